@@ -1,0 +1,61 @@
+// Paints the marks: one setTransform + one drawImage per mark, in unit order (later
+// units on top). A mark whose sprite is still loading is a plain ellipse in its colour.
+// units: Float32Array (N, 4) [layer, mark, base w, base h]; frame: (N, 4) [x, y, deg, scale].
+
+const RAD = Math.PI / 180;
+
+export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
+  const n = Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4;
+  let maxSide = 0;
+  for (let i = 0; i < n; i++) {
+    const s = frame[4 * i + 3];
+    const w = units[4 * i + 2] * s;
+    const h = units[4 * i + 3] * s;
+    const x = frame[4 * i];
+    const y = frame[4 * i + 1];
+    if (!(w > 0 && h > 0) || !Number.isFinite(x + y)) continue;
+    if (w > maxSide) maxSide = w;
+    if (h > maxSide) maxSide = h;
+    const a = frame[4 * i + 2] * RAD;
+    const c = Math.cos(a) * k;
+    const sn = Math.sin(a) * k;
+    ctx.setTransform(c, sn, -sn, c, x * k, y * k);
+    const bmp = bitmaps.get(units[4 * i + 1]);
+    if (bmp) {
+      ctx.drawImage(bmp, -w / 2, -h / 2, w, h);
+    } else {
+      ctx.fillStyle = rgba(colors, i);
+      ctx.beginPath();
+      ctx.ellipse(0, 0, w / 2, h / 2, 0, 0, 2 * Math.PI);
+      ctx.fill();
+    }
+  }
+  if (selected && selected.size) outlineSelected(ctx, k, units, frame, n, selected);
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  return maxSide * k;
+}
+
+function outlineSelected(ctx, k, units, frame, n, selected) {
+  ctx.lineWidth = 2 / k;
+  for (const i of selected) {
+    if (i < 0 || i >= n) continue;
+    const s = frame[4 * i + 3];
+    const w = units[4 * i + 2] * s;
+    const h = units[4 * i + 3] * s;
+    const a = frame[4 * i + 2] * RAD;
+    const c = Math.cos(a) * k;
+    const sn = Math.sin(a) * k;
+    ctx.setTransform(c, sn, -sn, c, frame[4 * i] * k, frame[4 * i + 1] * k);
+    ctx.strokeStyle = "#ffffff";
+    ctx.lineWidth = 4 / k;
+    ctx.strokeRect(-w / 2 - 2 / k, -h / 2 - 2 / k, w + 4 / k, h + 4 / k);
+    ctx.strokeStyle = "#1a73e8";
+    ctx.lineWidth = 2 / k;
+    ctx.strokeRect(-w / 2 - 2 / k, -h / 2 - 2 / k, w + 4 / k, h + 4 / k);
+  }
+}
+
+function rgba(colors, i) {
+  if (!colors || colors.length < 4 * i + 4) return "rgba(120, 120, 120, 0.8)";
+  return `rgba(${colors[4 * i]}, ${colors[4 * i + 1]}, ${colors[4 * i + 2]}, ${colors[4 * i + 3] / 255})`;
+}

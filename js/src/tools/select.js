@@ -1,0 +1,143 @@
+// select: drag emitter handles, forces and containers of the current layer (Delete or
+// Backspace removes the picked one); click a mark to select it (Shift toggles); drag on
+// empty space to lasso-select marks. Drags show a draft design and commit once on release.
+import { clone, removeForce, setContainer, setEmitter, translateContainer, updateLayer } from "../design-edit.js";
+import { angleDeg, closeStroke, dist, distToPolyline, round2 } from "../geometry.js";
+import { containerOutline, containerPath, directionArrow, insideContainer } from "../shapes.js";
+import { Stroke } from "./stroke.js";
+
+const rp = (p) => [round2(p[0]), round2(p[1])];
+
+export function select(view) {
+  let grab = null; // {kind, index, start, design}
+  let lasso = null;
+
+  function find(p, design, li) {
+    const layer = design.layers[li];
+    if (!layer) return null;
+    const r = 8 * view.unit();
+    const e = layer.emitter;
+    if (e && e.kind === "curve" && Array.isArray(e.points)) {
+      const j = nearest(e.points, p, r);
+      if (j >= 0) return { kind: "emitter", index: j };
+    }
+    const forces = layer.forces || [];
+    for (let k = forces.length - 1; k >= 0; k--) {
+      const f = forces[k];
+      if (f.kind === "point" && dist([f.x, f.y], p) <= r) return { kind: "force", index: k };
+      if (f.kind === "direction" && dist(directionArrow(layer, design.canvas, f.angle).to, p) <= 1.5 * r) {
+        return { kind: "force", index: k, direction: true };
+      }
+    }
+    if (view.hit(p) >= 0) return { kind: "mark", index: view.hit(p) };
+    const c = layer.container;
+    if (c && c.kind !== "canvas" && (nearOutline(c, p, design.canvas, 6 * view.unit()) || (!view.hasFrame() && insideContainer(c, p, design.canvas, view.hitContext())))) {
+      return { kind: "container", index: 0 };
+    }
+    return null;
+  }
+
+  function nearOutline(c, p, canvas, tol) {
+    const pts = containerOutline(c, canvas);
+    if (pts) return distToPolyline(p, pts, true) <= tol;
+    const ctx = view.hitContext();
+    const path = containerPath(c, canvas);
+    if (!path || !ctx) return false;
+    ctx.save();
+    ctx.lineWidth = 2 * tol;
+    const hit = ctx.isPointInStroke(path, p[0], p[1]);
+    ctx.restore();
+    return hit;
+  }
+
+  function dragged(p) {
+    const { kind, index, start, design } = grab;
+    const li = view.layer();
+    if (kind === "container") {
+      const [dx, dy] = [round2(p[0] - start[0]), round2(p[1] - start[1])];
+      return updateLayer(design, li, (l) => void (l.container = translateContainer(l.container, dx, dy, design.canvas)));
+    }
+    if (kind === "emitter") {
+      return updateLayer(design, li, (l) => {
+        const pts = l.emitter.points;
+        const d = [p[0] - pts[index][0], p[1] - pts[index][1]];
+        const moved = index % 3 === 0 ? [index - 1, index, index + 1] : [index];
+        for (const j of moved) if (pts[j]) pts[j] = rp([pts[j][0] + d[0], pts[j][1] + d[1]]);
+      });
+    }
+    return updateLayer(design, li, (l) => {
+      const f = l.forces[index];
+      if (f.kind === "point") Object.assign(f, { x: round2(p[0]), y: round2(p[1]) });
+      else f.angle = angleDeg(directionArrow(l, design.canvas, f.angle).from, p);
+    });
+  }
+
+  return {
+    down(p, ev) {
+      const design = view.design();
+      const found = find(p, design, view.layer());
+      if (found && found.kind === "mark") {
+        view.toggleSelect([found.index], ev.shiftKey);
+        view.pick(null);
+        return;
+      }
+      if (found) {
+        view.pick({ kind: found.kind, index: found.index });
+        grab = { ...found, start: p, design: clone(design), moved: false };
+        return;
+      }
+      view.pick(null);
+      lasso = new Stroke(p, view.unit());
+      lasso.shift = ev.shiftKey;
+    },
+    move(p) {
+      if (grab) {
+        if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
+        grab.moved = true;
+        view.setDraft(dragged(p));
+      } else if (lasso) lasso.add(p);
+    },
+    up(p) {
+      if (grab) {
+        if (grab.moved) view.commit(dragged(p));
+        view.setDraft(null);
+        grab = null;
+      } else if (lasso) {
+        lasso.add(p);
+        const closed = closeStroke(lasso.points, { snap: 0, minArea: 4 });
+        view.toggleSelect(closed ? view.marksInPolygon(closed.points) : [], lasso.shift);
+        lasso = null;
+      }
+    },
+    cancel() {
+      if (grab) view.setDraft(null);
+      grab = lasso = null;
+    },
+    /** Delete or Backspace: removes the picked container, force or emitter. */
+    deletePicked(picked) {
+      if (!picked) return false;
+      const design = view.design();
+      const li = view.layer();
+      if (picked.kind === "container") view.commit(setContainer(design, li, null));
+      else if (picked.kind === "force") view.commit(removeForce(design, li, picked.index));
+      else if (picked.kind === "emitter") view.commit(setEmitter(design, li, null));
+      else return false;
+      view.pick(null);
+      return true;
+    },
+    preview(ctx, unit) {
+      if (!lasso) return;
+      lasso.draw(ctx, { color: "rgba(26, 115, 232, 0.9)", width: 1.5 * unit, closeHint: true });
+    },
+  };
+}
+
+function nearest(points, p, r) {
+  let best = -1;
+  let bestD = r;
+  points.forEach((q, j) => {
+    const d = dist(q, p);
+    if (d <= bestD) [best, bestD] = [j, d];
+  });
+  return best;
+}

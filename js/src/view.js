@@ -1,0 +1,183 @@
+// One rendering of the widget: builds the DOM, redraws on every trait change, and
+// animates frames. All persistent state is in the model (and the per-model session).
+import { h, listen } from "./dom.js";
+import { commit, currentLayer, list, onModel, readDesign, redo, session, setUi, undo } from "./model-sync.js";
+import { createStage } from "./stage.js";
+import { ImageCache } from "./images.js";
+import { MarkBitmaps } from "./bitmaps.js";
+import { FrameInterpolator, decodeFloat32, decodeUint8 } from "./frames.js";
+import { HitIndex } from "./hit-index.js";
+import { drawScene } from "./draw-scene.js";
+import { drawOverlay } from "./draw-overlay.js";
+import { drawMarks } from "./draw-marks.js";
+import { makeTools } from "./tools/index.js";
+import { attachInput } from "./pointer.js";
+import { createToolbar } from "./toolbar.js";
+import { createStatus } from "./panels/status.js";
+import { createLayersPanel } from "./panels/layers.js";
+import { createSettingsPanel } from "./panels/settings.js";
+import { createFieldsPanel } from "./panels/fields.js";
+import { createMarkPanel } from "./panels/mark.js";
+import { download } from "./export.js";
+
+export function renderView({ model, el, signal }) {
+  const s = session(model);
+  const stage = createStage(signal);
+  const root = h("div", { class: "unitopia", dataset: { unitopia: "", status: "idle", frames: "0" }, tabindex: "0" });
+  const stats = { paints: 0, paintMs: 0, framesReceived: 0 };
+  root.unitopiaStats = stats; // read by benchmarks/frontend_fps.py
+  const hitCtx = document.createElement("canvas").getContext("2d");
+  const interp = new FrameInterpolator();
+  const images = new ImageCache(() => redraw("scene"));
+  const bitmaps = new MarkBitmaps(() => redraw("marks"));
+  let units = null, colors = null, selected = new Set(), draft = null, index = null;
+  const dirty = new Set();
+  let raf = 0;
+
+  const view = {
+    model, session: s, stage, root,
+    design: () => draft || readDesign(model),
+    layer: () => currentLayer(model),
+    unit: () => 1 / stage.scale,
+    hitContext: () => hitCtx,
+    eraserWidth: () => toolbar.eraserWidth(),
+    commit(next) {
+      draft = null;
+      commit(model, next);
+    },
+    setDraft(d) {
+      draft = d;
+      redraw("scene", "over");
+    },
+    setLayer: (i) => setUi(model, { layer: i, picked: null }),
+    setTool: (name) => setUi(model, { tool: name, picked: null }),
+    pick: (picked) => setUi(model, { picked }),
+    undo: () => undo(model),
+    redo: () => redo(model),
+    hasFrame: () => !!interp.to,
+    hit: (p) => hitIndex().query(p[0], p[1]),
+    marksInPolygon: (pts) => hitIndex().inPolygon(pts),
+    toggleSelect(indices, additive) {
+      const next = new Set(additive ? selected : []);
+      for (const i of indices) additive && next.has(i) && indices.length === 1 ? next.delete(i) : next.add(i);
+      model.set("selected_units", [...next].sort((a, b) => a - b));
+      model.save_changes();
+    },
+    redraw,
+  };
+
+  function hitIndex() {
+    const frame = interp.to;
+    if (!index || index.units !== units || index.frame !== frame) index = new HitIndex(units, frame);
+    return index;
+  }
+
+  const toolbar = createToolbar(view);
+  const status = createStatus(model);
+  const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
+  const tools = makeTools(view);
+  root.append(
+    h("div", { class: "ut-top" }, toolbar.el, status.el),
+    status.banner,
+    h("div", { class: "ut-main" }, stage.wrap, h("div", { class: "ut-side" }, panels.map((p) => p.el))),
+  );
+  el.append(root);
+  signal.addEventListener("abort", () => {
+    cancelAnimationFrame(raf);
+    bitmaps.dispose();
+    root.remove();
+  }, { once: true });
+
+  function redraw(...what) {
+    for (const w of what) dirty.add(w);
+    if (!raf) raf = requestAnimationFrame(paint);
+  }
+
+  function paint(now) {
+    raf = 0;
+    if (signal.aborted) return;
+    const design = view.design();
+    if (stage.layout(design.canvas)) ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+    if (interp.step(now)) dirty.add("marks");
+    const unit = view.unit();
+    if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
+    if (dirty.has("over")) drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool] });
+    if (dirty.has("marks")) {
+      const t0 = performance.now();
+      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
+      bitmaps.need(px);
+      stats.paints++;
+      stats.paintMs += performance.now() - t0;
+    }
+    dirty.clear();
+    if (!interp.settled) raf = requestAnimationFrame(paint);
+  }
+
+  // --- trait -> view -----------------------------------------------------------
+  function onDesign() {
+    const design = readDesign(model);
+    const bg = design.background && design.background.image;
+    if (typeof bg === "string" && bg.startsWith("data:image/")) {
+      if (stage.bg.getAttribute("src") !== bg) stage.bg.src = bg;
+      stage.bg.hidden = false;
+    } else stage.bg.hidden = true;
+    images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
+    updatePanels();
+    redraw("scene", "over");
+  }
+  function updatePanels() {
+    toolbar.update();
+    panels.forEach((p) => p.update());
+  }
+  function onFrame() {
+    const frame = decodeFloat32(model.get("frame"));
+    stats.framesReceived++;
+    interp.push(frame, performance.now());
+    if (model.get("status") !== "running") interp.snap();
+    redraw("marks");
+  }
+  function onUnits() {
+    units = decodeFloat32(model.get("units"));
+    colors = decodeUint8(model.get("colors"));
+    redraw("marks");
+  }
+  function onSelected() {
+    selected = new Set(list(model, "selected_units").map(Number));
+    redraw("marks");
+  }
+  function onStatus() {
+    root.dataset.status = String(model.get("status") || "idle");
+    root.dataset.frames = String(Number(model.get("frame_count")) || 0);
+    status.update();
+    toolbar.update();
+  }
+
+  onModel(model, ["change:design"], onDesign, signal);
+  onModel(model, ["change:frame"], onFrame, signal);
+  onModel(model, ["change:units", "change:colors"], onUnits, signal);
+  onModel(model, ["change:selected_units"], onSelected, signal);
+  onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], onStatus, signal);
+  onModel(model, ["change:fields"], () => panels[2].update(), signal);
+  onModel(model, ["change:marks"], () => {
+    bitmaps.update(list(model, "marks"));
+    panels[3].update();
+    redraw("marks");
+  }, signal);
+  onModel(model, ["change:titles"], () => {}, signal);
+  onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
+  listen(s.bus, "ui", () => {
+    updatePanels();
+    redraw("scene", "over");
+  }, signal);
+  stage.onResize = () => redraw("scene", "over", "marks");
+
+  attachInput(view, tools, signal);
+  bitmaps.update(list(model, "marks"));
+  onUnits();
+  onSelected();
+  onStatus();
+  onDesign();
+  onFrame();
+  stats.framesReceived = 0;
+  return view;
+}

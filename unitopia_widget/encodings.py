@@ -1,0 +1,190 @@
+"""Encodings: DataFrame rows -> per-unit size factors, colours, margins and order.
+
+``size`` makes the AREA of each mark proportional to its value; ``width`` and
+``height`` make that extent proportional. Factors are normalised to a mean of
+1; the solver's one global scale turns them into canvas pixels, so ratios are
+exact after layout.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from PIL import ImageColor
+
+from .validate import closest
+
+CATEGORICAL = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
+               "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")
+SEQUENTIAL = ("#f7e98e", "#9fd27f", "#3fae8a", "#24868e", "#355f8d", "#46327e")  # light -> dark
+DEFAULT_COLOR = "#4e79a7"
+NUMERIC_CHANNELS = ("size", "width", "height", "margin")
+
+
+@dataclass
+class Encoded:
+    """Per-unit encodings of one layer, arrays of shape ``(n,)``."""
+
+    area: np.ndarray      # silhouette area factor (mean 1 over the bound column)
+    width: np.ndarray     # extra x stretch (width encoding), 1 when unbound
+    height: np.ndarray    # extra y stretch (height encoding), 1 when unbound
+    margin: np.ndarray    # gap around each mark, fraction of its size
+    order: np.ndarray     # rank in emission order, 0 first
+    colors: list[str]     # CSS hex colour per unit
+
+
+def is_css_color(value) -> bool:
+    """True when ``value`` is a colour string PIL/CSS understands and not a column."""
+    if not isinstance(value, str):
+        return False
+    try:
+        ImageColor.getrgb(value)
+    except ValueError:
+        return False
+    return True
+
+
+def check_column(df: pd.DataFrame, channel: str, column) -> None:
+    """A ValueError naming the channel, the column and the closest existing one."""
+    if column not in df.columns:
+        names = ", ".join(repr(c) for c in df.columns)
+        raise ValueError(f"{channel}={column!r}: no such column{closest(column, df.columns)}; "
+                         f"the columns are {names}")
+
+
+def numeric_column(df: pd.DataFrame, channel: str, column, positive: bool) -> np.ndarray:
+    """The column as float64, checked: numeric, finite, and > 0 (or >= 0)."""
+    check_column(df, channel, column)
+    series = df[column]
+    if not pd.api.types.is_numeric_dtype(series) or pd.api.types.is_bool_dtype(series):
+        raise ValueError(f"{channel}={column!r}: the column must be numeric, "
+                         f"got dtype {series.dtype}")
+    values = series.to_numpy(dtype=float, na_value=np.nan)
+    bad = ~np.isfinite(values) | ((values <= 0) if positive else (values < 0))
+    if bad.any():
+        need = "> 0" if positive else ">= 0"
+        missing = int(np.isnan(values).sum())
+        raise ValueError(f"{channel}={column!r}: {int(bad.sum())} of {len(values)} rows are "
+                         f"missing, infinite or not {need} ({missing} missing); values must be "
+                         f"finite and {need}; pass dropna=True to drop those rows")
+    return values
+
+
+def invalid_rows(df: pd.DataFrame, bindings: dict) -> np.ndarray:
+    """Bool ``(n,)``: rows whose bound numeric values cannot be encoded."""
+    bad = np.zeros(len(df), dtype=bool)
+    for channel in NUMERIC_CHANNELS:
+        column = bindings.get(channel)
+        if isinstance(column, str) and column in df.columns and \
+                pd.api.types.is_numeric_dtype(df[column]):
+            values = df[column].to_numpy(dtype=float, na_value=np.nan)
+            floor_ok = values >= 0 if channel == "margin" else values > 0
+            bad |= ~np.isfinite(values) | ~floor_ok
+    return bad
+
+
+def encode(df: pd.DataFrame, size=None, width=None, height=None, color=None,
+           margin=0.0, order=None, palette: dict | None = None) -> Encoded:
+    """Encode the rows of ``df``. ``palette`` maps category -> colour (shared by layers)."""
+    n = len(df)
+    if size is not None and (width is not None or height is not None):
+        raise ValueError(f"size={size!r} cannot be combined with width={width!r} or "
+                         f"height={height!r}; bind size alone, or width and/or height")
+    area = _factor(df, "size", size, n)
+    w = _factor(df, "width", width, n)
+    h = _factor(df, "height", height, n)
+    if isinstance(margin, str):
+        margins = numeric_column(df, "margin", margin, positive=False)
+    else:
+        m = float(margin)
+        if not np.isfinite(m) or m < 0:
+            raise ValueError(f"margin must be a column name or a number >= 0, got {margin!r}")
+        margins = np.full(n, m)
+    return Encoded(area=area, width=w, height=h, margin=margins,
+                   order=_order(df, order), colors=_colors(df, color, palette))
+
+
+def _factor(df, channel, column, n) -> np.ndarray:
+    if column is None:
+        return np.ones(n)
+    if not isinstance(column, str):
+        raise TypeError(f"{channel} must be a column name or None, got {column!r}")
+    values = numeric_column(df, channel, column, positive=True)
+    return values / values.mean()
+
+
+def _order(df, column) -> np.ndarray:
+    n = len(df)
+    if column is None:
+        return np.arange(n)
+    check_column(df, "order", column)
+    ranks = np.empty(n, dtype=np.int64)
+    ranks[np.argsort(df[column].to_numpy(), kind="stable")] = np.arange(n)
+    return ranks
+
+
+def palette_for(values) -> dict:
+    """A categorical palette: one colour per distinct value, in sorted order."""
+    uniq = pd.unique(pd.Series(list(values)))
+    try:
+        uniq = sorted(uniq)
+    except TypeError:
+        pass
+    return {v: CATEGORICAL[i % len(CATEGORICAL)] for i, v in enumerate(uniq)}
+
+
+def _colors(df, color, palette) -> list[str]:
+    n = len(df)
+    if color is None:
+        return [DEFAULT_COLOR] * n
+    if not isinstance(color, str):
+        raise TypeError(f"color must be a column name or a CSS colour, got {color!r}")
+    if color not in df.columns:
+        if is_css_color(color):
+            return [_hex(color)] * n
+        raise ValueError(f"color={color!r} is neither a column{closest(color, df.columns)} "
+                         f"nor a CSS colour; the columns are "
+                         + ", ".join(repr(c) for c in df.columns))
+    series = df[color]
+    if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
+        return sequential(series.to_numpy(dtype=float, na_value=np.nan))
+    palette = palette if palette is not None else palette_for(series)
+    return [palette.get(v, DEFAULT_COLOR) for v in series]
+
+
+def sequential(values: np.ndarray) -> list[str]:
+    """Hex colours of a light-to-dark sequential scale over ``values``; NaN is grey."""
+    stops = np.array([ImageColor.getrgb(c) for c in SEQUENTIAL], dtype=float)
+    lo, hi = np.nanmin(values), np.nanmax(values)
+    t = np.zeros_like(values) if hi <= lo else (values - lo) / (hi - lo)
+    out = []
+    for v in t:
+        if not np.isfinite(v):
+            out.append("#bab0ac")
+            continue
+        x = v * (len(stops) - 1)
+        i = min(int(x), len(stops) - 2)
+        rgb = stops[i] + (stops[i + 1] - stops[i]) * (x - i)
+        out.append("#%02x%02x%02x" % tuple(int(round(c)) for c in rgb))
+    return out
+
+
+def _hex(color: str) -> str:
+    rgb = ImageColor.getrgb(color)[:3]
+    return "#%02x%02x%02x" % rgb
+
+
+def rgba(colors: list[str]) -> np.ndarray:
+    """uint8 ``(n, 4)`` RGBA of hex colours."""
+    out = np.full((len(colors), 4), 255, dtype=np.uint8)
+    for i, c in enumerate(colors):
+        out[i, :3] = ImageColor.getrgb(c)[:3]
+    return out
+
+
+def titles(df: pd.DataFrame) -> list[str]:
+    """One tooltip per row: ``column: value`` lines."""
+    cols = list(df.columns)
+    return ["\n".join(f"{c}: {v}" for c, v in zip(cols, row))
+            for row in df.itertuples(index=False, name=None)]

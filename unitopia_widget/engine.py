@@ -1,0 +1,196 @@
+"""From a design and a DataFrame to a solved layout.
+
+``bind`` encodes every layer's rows into ``Units`` (one per row, layers
+concatenated in drawing order). ``build_problem`` turns units, layers and the
+canvas into the solver's ``Problem``: sprites, raster, fields, starting
+positions from the emitters, the global scale. ``layout`` runs the solver and
+returns the placements table.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+import torch
+
+from .encodings import Encoded, check_column, encode, palette_for
+from .losses import CanvasTerms
+from .placement import Placement
+from .raster import SPRITE_SIDE, RasterGrid, sprite_pyramid
+from .scene import block_order
+from .solver import Problem, Result, solve
+from .start import orientation_targets, start_positions
+
+TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
+MAX_RASTER = 8_000_000    # raster px per layer slab
+DEFAULT_OPEN_FILL = 0.5
+
+
+@dataclass
+class Units:
+    """Per-unit arrays, ``(N,)`` unless noted, layers concatenated in drawing order."""
+
+    rows: list               # index label of each unit's row
+    layer: np.ndarray        # layer index
+    half_w: np.ndarray       # half box width at scale 1, canvas px
+    half_h: np.ndarray       # half box height at scale 1
+    area: np.ndarray         # silhouette area at scale 1, canvas px^2
+    margin: np.ndarray       # margin fraction
+    order: np.ndarray        # emission rank within the layer
+    colors: list             # CSS hex colour per unit
+
+
+def layer_rows(df: pd.DataFrame, layer) -> pd.DataFrame:
+    """The rows of ``df`` that ``layer.rows`` selects."""
+    rows = layer.rows
+    if rows is None:
+        return df
+    if "column" in rows:
+        check_column(df, f"layer {layer.name!r} rows", rows["column"])
+        return df[df[rows["column"]] == rows["value"]]
+    missing = [i for i in rows["index"] if i not in df.index]
+    if missing:
+        raise ValueError(f"layer {layer.name!r}: {len(missing)} of its rows are not in the "
+                         f"DataFrame (first missing index label: {missing[0]!r})")
+    return df.loc[rows["index"]]
+
+
+def bind(df: pd.DataFrame, layers) -> Units:
+    """Encode all layers. Raises ValueError for empty layers or bad bindings."""
+    color_cols = {layer.encodings["color"] for layer in layers
+                  if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
+    palettes = {c: palette_for(df[c]) for c in color_cols
+                if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c])}
+    parts, rows = [], []
+    for i, layer in enumerate(layers):
+        sub = layer_rows(df, layer)
+        if len(sub) == 0:
+            raise ValueError(f"layer {layer.name!r} has no rows to draw")
+        e = layer.encodings
+        enc: Encoded = encode(sub, size=e["size"], width=e["width"], height=e["height"],
+                              color=e["color"], margin=e["margin"], order=e["order"],
+                              palette=palettes.get(e["color"]))
+        mark = layer.mark
+        # the box whose silhouette has area enc.area: h0 * (aspect * h0) * fill_fraction = area
+        h0 = np.sqrt(enc.area / (mark.aspect * mark.fill_fraction))
+        parts.append((i, h0 * mark.aspect * enc.width / 2, h0 * enc.height / 2, enc))
+        rows.extend(sub.index.tolist())
+    cat = lambda f: np.concatenate([f(p) for p in parts])  # noqa: E731
+    return Units(rows=rows, layer=cat(lambda p: np.full(len(p[3].area), p[0])),
+                 half_w=cat(lambda p: p[1]), half_h=cat(lambda p: p[2]),
+                 area=cat(lambda p: p[3].area * p[3].width * p[3].height),
+                 margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
+                 colors=[c for p in parts for c in p[3].colors])
+
+
+def pick_device(device) -> str:
+    """"cuda" when asked for or (device None/"auto") available, else "cpu"."""
+    if device in (None, "auto"):
+        return "cuda" if torch.cuda.is_available() else "cpu"
+    if device not in ("cpu", "cuda") and not str(device).startswith("cuda:"):
+        raise ValueError(f"device must be None, 'auto', 'cpu' or 'cuda', got {device!r}")
+    if str(device).startswith("cuda") and not torch.cuda.is_available():
+        raise ValueError(f"device={device!r} but CUDA is not available here; use 'cpu' or None")
+    return str(device)
+
+
+def initial_scale(units: Units, layers, canvas) -> tuple[float, bool, list]:
+    """The starting global scale, whether it is optimised, and each layer's container area.
+
+    Open layers (and closed ones with a ``fill``) fix the scale so their marks
+    cover ``fill`` of the container; closed layers without one start at 70%
+    coverage and let the optimiser grow the scale until the container is full.
+    """
+    fixed, free, areas = [], [], []
+    for i, layer in enumerate(layers):
+        area = _container(layer).area(canvas)
+        if area <= 0:
+            raise ValueError(f"layer {layer.name!r}: its container does not overlap the canvas")
+        areas.append(area)
+        sharing = sum(units.area[units.layer == j].sum() for j, other in enumerate(layers)
+                      if _container(other) == _container(layer))
+        if layer.boundary == "open" or layer.fill is not None:
+            fill = layer.fill or DEFAULT_OPEN_FILL
+            fixed.append(math.sqrt(fill * area / sharing))
+        else:
+            free.append(math.sqrt(0.7 * area / sharing))
+    if fixed:
+        return min(fixed), False, areas
+    return min(free), True, areas
+
+
+def _container(layer):
+    from .containers import Container
+    return layer.container if layer.container is not None else Container.canvas()
+
+
+def build_problem(units: Units, layers, canvas, seed: int, device: str,
+                  max_iterations: int | None = None) -> Problem:
+    """Assemble the solver's problem for ``units`` laid out by ``layers``."""
+    order = block_order(layers)
+    scale, free_scale, _ = initial_scale(units, layers, canvas)
+    foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * scale
+    r_mean = float(np.mean(foot))
+    w, h = canvas
+    rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h)))
+    grid = RasterGrid((w, h), rho, pad=2)
+    dev = torch.device(device)
+    fields = [_fields(_container(layer), grid, r_mean * rho) for layer in layers]
+    blocks = torch.zeros(len(layers), len(layers))
+    names = [layer.name for layer in layers]
+    for a, layer in enumerate(layers):
+        for b in layer.blocks:
+            blocks[a, names.index(b)] = 1.0
+    norm = float((units.area * (1 + 2 * units.margin) ** 2).sum()) * (scale * rho) ** 2
+    terms = CanvasTerms(
+        penalty=torch.stack([f[2] for f in fields]).to(dev),
+        outside=torch.stack([f[1] for f in fields]).to(dev),
+        inside=torch.stack([f[0] if layer.boundary == "closed" and layer.fill is None
+                            else torch.zeros_like(f[0]) for f, layer in zip(fields, layers)]).to(dev),
+        blocks=blocks.to(dev), norm=norm, w_fill=0.15 if free_scale else 0.0)
+    generator = torch.Generator().manual_seed(int(seed))
+    start = start_positions(units, layers, order, canvas, scale, grid, generator)
+    placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
+                          orientation=orientation_targets(units, layers, canvas, dev),
+                          tracks=start.tracks(dev), drift=start.drift)
+    pyramids = [[lvl.to(dev) for lvl in sprite_pyramid(layer.mark.silhouette(SPRITE_SIDE), dev)]
+                for layer in layers]
+    cap = max_iterations or max(layer.iterations for layer in layers)
+    return Problem(grid=grid, pyramids=pyramids, sprite_sides=[SPRITE_SIDE] * len(layers),
+                   sprite=units.layer, layer=units.layer, half_w=units.half_w,
+                   half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
+                   forces=[layer.forces for layer in layers], scale=scale,
+                   free_scale=free_scale, max_iterations=cap, device=device)
+
+
+def _fields(container, grid: RasterGrid, falloff: float):
+    from .fields import region_fields
+    cov = container.coverage(grid.canvas, grid.rho)
+    inside, outside, penalty = region_fields(cov, grid, falloff)
+    return tuple(torch.from_numpy(a).reshape(-1) for a in (inside, outside, penalty))
+
+
+def placements(units: Units, layers, result: Result, marks) -> pd.DataFrame:
+    """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height)."""
+    names = np.array([layer.name for layer in layers], dtype=object)
+    width = 2 * units.half_w * result.scale
+    height = 2 * units.half_h * result.scale
+    box = np.array([marks[i].box_size for i in units.layer])
+    return pd.DataFrame({
+        "row": units.rows, "layer": names[units.layer],
+        "x": result.center[:, 0], "y": result.center[:, 1], "angle": result.angle,
+        "sx": width / box[:, 0], "sy": height / box[:, 1], "width": width, "height": height,
+    })
+
+
+def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
+           on_progress=None, frame_every: int = 3):
+    """Bind, build and solve. Returns ``(units, result, placements DataFrame)``."""
+    units = bind(df, layers)
+    problem = build_problem(units, layers, canvas, seed, pick_device(device))
+    result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
+                   frame_every=frame_every)
+    table = placements(units, layers, result, [layer.mark for layer in layers])
+    return units, result, table

@@ -1,0 +1,73 @@
+"""SVG and PNG export of a laid-out chart (DESIGN.md section 2, "SVG export").
+
+Structure: a root ``<svg width=W height=H viewBox="0 0 W H">``; the background,
+if any, as ``<image class="background">``; one definition per (layer mark,
+colour) in ``<defs>``; one ``<g class="unit" data-row data-layer transform>``
+per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
+definition. The unit transform maps the mark's box onto its placement:
+``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``.
+"""
+from __future__ import annotations
+
+import io
+from xml.sax.saxutils import escape, quoteattr
+
+import numpy as np
+from PIL import Image
+
+from .svgsafe import SVG_NS
+
+
+def _n(v: float) -> str:
+    s = f"{float(v):.3f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def to_svg(canvas, table, layers, colors, titles, background: str | None = None) -> str:
+    """The chart as SVG text.
+
+    ``table``: the placements DataFrame (one row per unit, layer order);
+    ``colors``: CSS colour per unit; ``titles``: tooltip text per unit;
+    ``background``: a PNG data URL or None.
+    """
+    w, h = canvas
+    out = [f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" '
+           f'width="{_n(w)}" height="{_n(h)}" viewBox="0 0 {_n(w)} {_n(h)}">']
+    if background:
+        out.append(f'<image class="background" x="0" y="0" width="{_n(w)}" height="{_n(h)}" '
+                   f'preserveAspectRatio="none" href={quoteattr(background)}/>')
+    by_name = {layer.name: (i, layer) for i, layer in enumerate(layers)}
+    defs, ids = [], {}
+    for name, color in zip(table["layer"], colors):
+        if (name, color) not in ids:
+            i, layer = by_name[name]
+            def_id = f"u{i}m{len(ids)}"
+            ids[(name, color)] = def_id
+            defs.append(layer.mark.svg_fragment(def_id, color))
+    out.append("<defs>" + "".join(defs) + "</defs>")
+    cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
+    for k, (row, name) in enumerate(zip(table["row"], table["layer"])):
+        x, y, a, sx, sy = cols[k]
+        bw, bh = by_name[name][1].mark.box_size
+        transform = (f"translate({_n(x)} {_n(y)}) rotate({_n(a)}) scale({sx:.6g} {sy:.6g}) "
+                     f"translate({_n(-bw / 2)} {_n(-bh / 2)})")
+        out.append(f'<g class="unit" data-row={quoteattr(str(row))} data-layer={quoteattr(name)} '
+                   f'transform="{transform}"><title>{escape(titles[k])}</title>'
+                   f'<use href="#{ids[(name, colors[k])]}"/></g>')
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:
+    """PNG bytes of ``svg`` rendered at ``scale`` x the canvas size (resvg)."""
+    import resvg_py
+
+    w, h = canvas
+    data = resvg_py.svg_to_bytes(svg_string=svg, width=max(1, int(round(w * scale))),
+                                 height=max(1, int(round(h * scale))))
+    return bytes(data)
+
+
+def png_array(svg: str, canvas, scale: float = 1.0) -> np.ndarray:
+    """``(H, W, 4)`` uint8 RGBA of ``svg`` rendered at ``scale``."""
+    return np.array(Image.open(io.BytesIO(to_png(svg, canvas, scale))).convert("RGBA"))

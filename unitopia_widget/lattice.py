@@ -1,0 +1,71 @@
+"""Hexagonal lattices inside a region: the starting positions emitters hand out."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import ndimage
+
+
+class Region:
+    """A container's inside, sampled on a raster, for placing points.
+
+    ``coverage``: ``(H, W)`` inside share per raster pixel; ``rho`` raster px per canvas px.
+    """
+
+    def __init__(self, coverage: np.ndarray, rho: float):
+        self.rho = rho
+        inside = coverage >= 0.5
+        if not inside.any():
+            raise ValueError("container: the region has no inside pixels on the canvas")
+        self.depth = ndimage.distance_transform_edt(inside) / rho   # canvas px to the outside
+        ys, xs = np.nonzero(inside)
+        self.bbox = (xs.min() / rho, ys.min() / rho, (xs.max() + 1) / rho, (ys.max() + 1) / rho)
+        self.area = float(coverage.sum()) / rho ** 2
+
+    def depth_at(self, points: np.ndarray) -> np.ndarray:
+        """Distance (canvas px) from each point ``(k, 2)`` to the region's outside; 0 outside."""
+        h, w = self.depth.shape
+        j = np.clip((points[:, 0] * self.rho).astype(int), 0, w - 1)
+        i = np.clip((points[:, 1] * self.rho).astype(int), 0, h - 1)
+        return self.depth[i, j]
+
+
+def hex_points(bbox, spacing: float, phase: float = 0.0) -> np.ndarray:
+    """Centres ``(k, 2)`` of a hexagonal lattice with ``spacing`` px over ``bbox``, row by row."""
+    x0, y0, x1, y1 = bbox
+    dy = spacing * math.sqrt(3) / 2
+    rows = np.arange(y0 + dy / 2, y1, dy)
+    pts = []
+    for r, y in enumerate(rows):
+        offset = (spacing / 2 if r % 2 else 0.0) + phase * spacing
+        xs = np.arange(x0 + spacing / 2 + offset, x1, spacing)
+        pts.append(np.stack([xs, np.full_like(xs, y)], axis=1))
+    return np.concatenate(pts) if pts else np.zeros((0, 2))
+
+
+def fitting_lattice(region: Region, count: int, spacing: float, clearance: float) -> np.ndarray:
+    """At least ``count`` lattice points whose depth is >= ``clearance``.
+
+    Starts at ``spacing`` (canvas px) and tightens it until enough points fit;
+    with a too-small region, the tightest lattice holds them anyway (the
+    optimiser then shrinks the marks). Returns all fitting points, row by row.
+    """
+    for _ in range(60):
+        pts = hex_points(region.bbox, spacing)
+        ok = pts[region.depth_at(pts) >= clearance]
+        if len(ok) >= count:
+            return ok
+        spacing *= 0.97
+        clearance *= 0.97
+    pts = hex_points(region.bbox, spacing)
+    ok = pts[region.depth_at(pts) > 0]
+    if len(ok) < count:
+        raise ValueError(f"container: too small to place {count} marks "
+                         f"(its area is {region.area:.1f} px^2)")
+    return ok
+
+
+def grid_spacing(region: Region, count: int) -> float:
+    """The hex spacing (canvas px) at which ``count`` points tile the whole region."""
+    return math.sqrt(region.area / count / (math.sqrt(3) / 2))

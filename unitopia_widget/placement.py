@@ -1,0 +1,95 @@
+"""Placement: the optimised parameters of every unit and their constraints.
+
+``Placement`` maps parameters to transforms: centres ``(N, 2)`` canvas px and
+angles ``(N,)`` radians (clockwise on screen). Free units move by their own
+translation; frozen ones (an emitter with ``speed=0``) keep their emitted
+centre. Angles are fixed, free (``rotate=True``) or pulled towards a target
+direction by the orientation loss (paper eq. 6). Subclasses in
+``curves.py`` tie centres to an emitter curve.
+"""
+from __future__ import annotations
+
+import numpy as np
+import torch
+
+DRIFT_DECAY = 0.9
+
+
+class Placement:
+    """Free translations (masked by ``movable``) and optionally free angles."""
+
+    def __init__(self, center: np.ndarray, angle: np.ndarray, movable: np.ndarray,
+                 turnable: np.ndarray, device, orientation=None, orientation_weight: float = 0.05,
+                 tracks=(), drift: np.ndarray | None = None):
+        """``center (N, 2)``, ``angle (N,)`` radians, ``movable``/``turnable`` bool ``(N,)``.
+
+        ``orientation``: None or a callable ``(center (N, 2), tangent (N, 2)) ->
+        (target (N, 2), mask (N,))`` giving the direction each masked unit's up
+        axis should point to. ``tracks``: ``CurveTrack``s whose units follow a
+        curve. ``drift``: ``(N, 2)`` initial velocity, px per iteration,
+        decaying by ``DRIFT_DECAY`` each iteration.
+        """
+        self.tracks = list(tracks)
+        self.drift = None if drift is None or not np.any(drift) else \
+            torch.tensor(drift, dtype=torch.float32, device=device)
+        self.device = torch.device(device)
+        self.t = torch.tensor(center, dtype=torch.float32, device=self.device, requires_grad=True)
+        self.movable = torch.as_tensor(movable, device=self.device)
+        if not bool(self.movable.all()):
+            keep = self.movable[:, None].to(torch.float32)
+            self.t.register_hook(lambda g: g * keep)
+        self.turnable = np.asarray(turnable, dtype=bool)
+        self.theta = torch.tensor(angle, dtype=torch.float32, device=self.device,
+                                  requires_grad=bool(self.turnable.any()))
+        if self.turnable.any() and not self.turnable.all():
+            turn = torch.as_tensor(self.turnable, device=self.device).to(torch.float32)
+            self.theta.register_hook(lambda g: g * turn)
+        self.orientation = orientation
+        self.orientation_weight = orientation_weight
+        self._fixed_angle = bool(np.any(np.abs(angle) > 1e-6))
+
+    def parameters(self) -> list[torch.Tensor]:
+        return [self.t] + [p for track in self.tracks for p in track.parameters()]
+
+    def angle_params(self) -> list[torch.Tensor]:
+        return [self.theta] if self.theta.requires_grad else []
+
+    def rotating(self) -> np.ndarray:
+        """Bool ``(N,)``: units whose patch must hold any rotation."""
+        if self._fixed_angle or self.turnable.any():
+            return np.ones(len(self.turnable), dtype=bool)
+        return self.turnable
+
+    def transforms(self) -> tuple[torch.Tensor, torch.Tensor]:
+        return self.centers_and_tangents()[0], self.theta
+
+    def centers_and_tangents(self):
+        """Centres ``(N, 2)`` and, for units on a curve track, the curve tangent (else 0)."""
+        center, tangent = self.t, torch.zeros_like(self.t)
+        for track in self.tracks:
+            pos, tan = track.positions()
+            center = center.index_copy(0, track.index, pos)
+            tangent = tangent.index_copy(0, track.index, tan.detach())
+        return center, tangent
+
+    def penalty(self) -> torch.Tensor:
+        """Orientation loss: mean ``1 - cos`` between up axis and target, weighted."""
+        if self.orientation is None:
+            return torch.zeros((), device=self.device)
+        center, tangent = self.centers_and_tangents()
+        target, mask = self.orientation(center.detach(), tangent)
+        angle = self.theta
+        up = torch.stack([torch.sin(angle), -torch.cos(angle)], dim=1)     # (N, 2)
+        cos = (up * target).sum(1) / target.norm(dim=1).clamp_min(1e-6)
+        return self.orientation_weight * ((1 - cos) * mask).sum() / mask.sum().clamp_min(1)
+
+    @torch.no_grad()
+    def project(self, canvas: tuple[float, float], iteration: int) -> None:
+        """Apply the decaying drift, keep centres on the canvas and tracks in order."""
+        if self.drift is not None:
+            self.t += self.drift * (DRIFT_DECAY ** iteration) * self.movable[:, None]
+        w, h = canvas
+        self.t[:, 0].clamp_(0, w)
+        self.t[:, 1].clamp_(0, h)
+        for track in self.tracks:
+            track.project()

@@ -1,0 +1,154 @@
+"""Differentiable patch rasterizer: marks -> per-pixel alpha samples.
+
+Conventions
+-----------
+* Canvas coordinates are pixels, x right, y down. The raster has ``rho``
+  raster pixels per canvas pixel and a border of ``pad`` raster pixels on
+  every side, so a patch never leaves the raster: raster pixel ``(i, j)``
+  (row, column) has its centre at canvas point
+  ``((j - pad + 0.5) / rho, (i - pad + 0.5) / rho)``.
+* Angles are radians, clockwise on screen (SVG ``rotate``).
+* A sprite is an alpha image ``(h, w)`` spanning the mark's box exactly.
+
+Each mark renders into a small patch around its centre: the pixel centres are
+mapped through ``mark_from_canvas`` into sprite coordinates in ``[-1, 1]`` and
+sampled bilinearly with ``grid_sample`` (differentiable in centre, angle and
+extent). Marks that share a sprite level and patch size form one group and one
+``grid_sample`` call. The result is a flat list of samples: alpha value and
+flat raster index, ready for ``index_add_``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+
+#: Patch sides (raster px) that groups are rounded up to: few groups, little waste.
+PATCH_SIDES = (4, 6, 8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48, 56, 64, 80, 96,
+               112, 128, 160, 192, 224, 256, 320, 384, 448, 512, 640, 768, 1024)
+SPRITE_SIDE = 256  # long side of the finest sprite level, texels
+
+
+def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32) -> list[torch.Tensor]:
+    """Box-filtered mip levels of one silhouette.
+
+    ``alpha`` is ``(h, w)`` in [0, 1] with long side ``SPRITE_SIDE``. Returns
+    tensors ``(1, 1, h_l, w_l)``, finest first, each level half the previous
+    (area averaging keeps the rendered area exact), down to a long side of 4.
+    """
+    level = torch.as_tensor(np.ascontiguousarray(alpha), dtype=dtype, device=device)[None, None]
+    levels = [level]
+    while max(level.shape[-2:]) > 4:
+        h, w = level.shape[-2:]
+        level = F.interpolate(level, size=(max(1, h // 2), max(1, w // 2)), mode="area")
+        levels.append(level)
+    return levels
+
+
+@dataclass
+class RasterGrid:
+    """The raster the layout is evaluated on: ``(height, width)`` raster pixels incl. padding."""
+
+    canvas: tuple[float, float]  # (width, height), canvas px
+    rho: float                   # raster px per canvas px
+    pad: int                     # raster px of border on each side
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        w, h = self.canvas
+        return (math.ceil(h * self.rho) + 2 * self.pad, math.ceil(w * self.rho) + 2 * self.pad)
+
+    @property
+    def size(self) -> int:
+        h, w = self.shape
+        return h * w
+
+
+def _patch_side(extent: np.ndarray) -> np.ndarray:
+    """Smallest entry of PATCH_SIDES >= extent (raster px), elementwise."""
+    sides = np.asarray(PATCH_SIDES)
+    pos = np.searchsorted(sides, extent, side="left")
+    if (pos >= len(sides)).any():
+        raise ValueError(
+            f"a mark spans {float(extent.max()):.0f} raster pixels, more than the largest "
+            f"patch ({sides[-1]}); use fewer, smaller marks or a smaller canvas")
+    return sides[pos]
+
+
+def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
+                sprite_sides: list[int], rotating: np.ndarray, rho: float):
+    """Group marks by (sprite, level, patch shape).
+
+    ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
+    ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
+    ``sprite_sides``: long side of each sprite's finest level, texels.
+    ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
+    any rotation, others a box patch.
+    Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
+    """
+    long_px = 2.0 * np.maximum(half_w, half_h) * rho
+    radius = np.hypot(half_w, half_h) * rho
+    ext_w = np.where(rotating, 2 * radius, 2 * half_w * rho) + 2.0
+    ext_h = np.where(rotating, 2 * radius, 2 * half_h * rho) + 2.0
+    pw, ph = _patch_side(ext_w), _patch_side(ext_h)
+    sides = np.asarray(sprite_sides, dtype=float)[sprite_ids]
+    # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
+    level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
+    key = np.stack([sprite_ids, level, ph, pw], axis=1)
+    uniq, inverse = np.unique(key, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    order = np.argsort(inverse, kind="stable")
+    bounds = np.searchsorted(inverse[order], np.arange(len(uniq) + 1))
+    return [(order[bounds[g]:bounds[g + 1]], int(u[0]), int(u[1]), int(u[2]), int(u[3]))
+            for g, u in enumerate(uniq)]
+
+
+def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tensor,
+                   half_h: torch.Tensor, groups, pyramids, grid: RasterGrid):
+    """Alpha samples of every mark's footprint.
+
+    ``center``: ``(N, 2)`` canvas px; ``angle``: ``(N,)`` radians;
+    ``half_w``, ``half_h``: ``(N,)`` canvas px. All may carry gradients.
+    Returns ``values (M,)`` (alpha, differentiable), ``index (M,)`` (flat
+    raster index, long) and ``owner (M,)`` (the mark of each sample, long).
+    """
+    rho, pad = grid.rho, grid.pad
+    height, width = grid.shape
+    values, indices, owners = [], [], []
+    for idx_np, sprite_id, level, ph, pw in groups:
+        idx = torch.as_tensor(idx_np, device=center.device)
+        c = center[idx] * rho + pad                                     # (n, 2) raster px
+        a = angle[idx]
+        cos, sin = torch.cos(a)[:, None, None], torch.sin(a)[:, None, None]
+        size = torch.tensor([pw, ph], device=c.device, dtype=c.dtype)
+        limit = torch.tensor([width, height], device=c.device, dtype=c.dtype) - size
+        # patches stay on the raster; a mark beyond the border is cut off there
+        origin = torch.minimum(torch.clamp(torch.floor(c.detach() - size / 2), min=0), limit)
+        u = torch.arange(pw, device=c.device, dtype=c.dtype) + 0.5
+        v = torch.arange(ph, device=c.device, dtype=c.dtype) + 0.5
+        dx = (origin[:, None, 0] + u - c[:, 0:1])[:, None, :]              # (n, 1, pw)
+        dy = (origin[:, None, 1] + v - c[:, 1:2])[:, :, None]              # (n, ph, 1)
+        sx = (rho * half_w[idx])[:, None, None]
+        sy = (rho * half_h[idx])[:, None, None]
+        gx = (cos * dx + sin * dy) / sx                                    # (n, ph, pw) sprite x in [-1, 1]
+        gy = (cos * dy - sin * dx) / sy
+        sample_grid = torch.stack([gx, gy], dim=-1).reshape(1, -1, pw, 2)  # (1, n*ph, pw, 2)
+        sprite = pyramids[sprite_id][level]
+        alpha = F.grid_sample(sprite, sample_grid, mode="bilinear",
+                              padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
+        o = origin.long()
+        flat = ((o[:, 1, None] + torch.arange(ph, device=c.device))[:, :, None] * width
+                + (o[:, 0, None] + torch.arange(pw, device=c.device))[:, None, :])  # (n, ph, pw)
+        values.append(alpha.reshape(-1))
+        indices.append(flat.reshape(-1))
+        owners.append(idx.repeat_interleave(ph * pw))
+    return torch.cat(values), torch.cat(indices), torch.cat(owners)
+
+
+def accumulate(values: torch.Tensor, index: torch.Tensor, size: int) -> torch.Tensor:
+    """Coverage image: the sum of all samples per raster pixel, ``(size,)``."""
+    coverage = torch.zeros(size, dtype=values.dtype, device=values.device)
+    return coverage.index_add_(0, index, values)

@@ -1,0 +1,213 @@
+"""The design model: layers of marks, containers, emitters and forces.
+
+A ``Scene`` is the whole design except the data: canvas, background, seed
+and ordered ``Layer``s. It serialises to the versioned design JSON of
+``docs/protocol.md``, the one format used by ``save``/``load`` and by the
+widget's ``design`` traitlet.
+"""
+from __future__ import annotations
+
+from numbers import Real
+
+from .containers import Container
+from .emitters import CurveEmitter, GridEmitter, emitter_from_json
+from .forces import DirectionalForce, PointForce, force_from_json
+from .marks import Mark
+from .validate import check_choice, check_finite, closest
+
+SCHEMA, VERSION = "unitopia-design", 1
+CHANNELS = ("size", "width", "height", "color", "margin", "order")
+BOUNDARIES = ("closed", "open")
+ORIENTATIONS = (None, "to_center", "along_emitter")
+LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
+                "rotate", "blocks", "iterations", "name") + CHANNELS
+
+
+class Layer:
+    """One sub-unit visualization: which rows, drawn how, laid out where.
+
+    Change it with ``set(**fields)``; the owning chart is told, so the widget
+    redraws. ``encodings`` maps channel -> column name or literal.
+    """
+
+    def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
+                 forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
+                 blocks=(), iterations=600, on_change=None, **encodings):
+        self._on_change = None
+        self.name, self.rows = str(name), rows
+        self.mark = Mark.from_spec("circle" if mark is None else mark)
+        self.encodings = {c: None for c in CHANNELS}
+        self.encodings["margin"] = 0.0
+        self.container = self.emitter = None
+        self.forces, self.blocks = [], []
+        self.boundary, self.fill, self.orientation = "closed", None, None
+        self.rotate, self.iterations = False, 600
+        self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
+                 fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
+                 iterations=iterations, **encodings)
+        self._on_change = on_change
+
+    def set(self, **fields) -> "Layer":
+        """Change fields (any of ``LAYER_FIELDS``); checks every value first, then applies."""
+        for key in fields:
+            if key not in LAYER_FIELDS:
+                raise TypeError(f"Layer.set: unknown field {key!r}{closest(key, LAYER_FIELDS)}; "
+                                f"valid fields: {', '.join(LAYER_FIELDS)}")
+        checked = {k: _CHECKS[k](v) for k, v in fields.items()}
+        for key, value in checked.items():
+            if key in CHANNELS:
+                self.encodings[key] = value
+            else:
+                setattr(self, key, value)
+        if self._on_change is not None:
+            self._on_change(self, set(checked))
+        return self
+
+    def to_json(self) -> dict:
+        return {
+            "name": self.name, "rows": self.rows, "mark": self.mark.to_json(),
+            "encodings": dict(self.encodings),
+            "container": None if self.container is None else self.container.to_json(),
+            "emitter": None if self.emitter is None else self.emitter.to_json(),
+            "forces": [f.to_json() for f in self.forces],
+            "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
+            "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
+        }
+
+    @classmethod
+    def from_json(cls, d: dict, on_change=None) -> "Layer":
+        enc = {k: v for k, v in (d.get("encodings") or {}).items() if k in CHANNELS}
+        return cls(d["name"], mark=Mark.from_json(d["mark"]), rows=d.get("rows"),
+                   container=None if d.get("container") is None else Container.from_json(d["container"]),
+                   emitter=emitter_from_json(d.get("emitter")),
+                   forces=[force_from_json(f) for f in d.get("forces", [])],
+                   boundary=d.get("boundary", "closed"), fill=d.get("fill"),
+                   orientation=d.get("orientation"), rotate=d.get("rotate", False),
+                   blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
+                   on_change=on_change, **enc)
+
+    def __repr__(self) -> str:
+        bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
+        return (f"Layer({self.name!r}, mark={self.mark.kind}, {bound or 'no encodings'}, "
+                f"container={self.container.kind if self.container else 'canvas'}, "
+                f"forces={len(self.forces)}, boundary={self.boundary!r})")
+
+
+def _container(value):
+    if value is None or isinstance(value, Container):
+        return value
+    if isinstance(value, dict):
+        return Container.from_json(value)
+    raise TypeError(f"container must be a uw.Container (rect, ellipse, polygon, path, image, "
+                    f"canvas) or None, got {type(value).__name__}")
+
+
+def _emitter(value):
+    if value is None or isinstance(value, (GridEmitter, CurveEmitter)):
+        return value
+    if isinstance(value, dict):
+        return emitter_from_json(value)
+    raise TypeError(f"emitter must be uw.GridEmitter(...), uw.CurveEmitter(...) or None, "
+                    f"got {type(value).__name__}")
+
+
+def _forces(value):
+    items = [value] if isinstance(value, (PointForce, DirectionalForce, dict)) else list(value or [])
+    out = [force_from_json(f) if isinstance(f, dict) else f for f in items]
+    for f in out:
+        if not isinstance(f, (PointForce, DirectionalForce)):
+            raise TypeError(f"forces must be uw.PointForce or uw.DirectionalForce objects, got {f!r}")
+    return out
+
+
+def _fill(value):
+    if value is None:
+        return None
+    v = check_finite("Layer", "fill", value)
+    if not 0 < v <= 1:
+        raise ValueError(f"fill must be None or a share in (0, 1], got {value!r}")
+    return v
+
+
+def _orientation(value):
+    if value in ORIENTATIONS or (isinstance(value, Real) and not isinstance(value, bool)):
+        return value if value in ORIENTATIONS else check_finite("Layer", "orientation", value)
+    raise ValueError(f"orientation must be one of None, 'to_center', 'along_emitter', or a number "
+                     f"of degrees; got {value!r}")
+
+
+def _iterations(value):
+    if isinstance(value, bool) or not isinstance(value, int) or not 20 <= value <= 100_000:
+        raise ValueError(f"iterations must be an integer between 20 and 100000, got {value!r}")
+    return value
+
+
+def _channel(name):
+    def check(value):
+        if value is None or isinstance(value, str):
+            return value
+        if name == "margin" and isinstance(value, Real) and not isinstance(value, bool):
+            v = check_finite("Layer", "margin", value)
+            if not 0 <= v <= 2:
+                raise ValueError(f"margin must be a column name or a fraction in [0, 2], got {value!r}")
+            return v
+        raise TypeError(f"{name} must be a column name or None, got {value!r}")
+    return check
+
+
+_CHECKS = {
+    "mark": Mark.from_spec, "container": _container, "emitter": _emitter, "forces": _forces,
+    "boundary": lambda v: check_choice("Layer", "boundary", v, BOUNDARIES),
+    "fill": _fill, "orientation": _orientation, "rotate": bool,
+    "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
+    "iterations": _iterations, "name": str,
+    **{c: _channel(c) for c in CHANNELS},
+}
+
+
+def block_order(layers) -> list[int]:
+    """Layer indices with every blocking layer before the layers it blocks.
+
+    Raises ValueError naming an unknown block or the first cycle found.
+    """
+    names = [layer.name for layer in layers]
+    index = {n: i for i, n in enumerate(names)}
+    for layer in layers:
+        for b in layer.blocks:
+            if b not in index:
+                raise ValueError(f"layer {layer.name!r} blocks on {b!r}: no such layer"
+                                 f"{closest(b, names)}; the layers are {', '.join(map(repr, names))}")
+            if b == layer.name:
+                raise ValueError(f"block cycle: layer {b!r} blocks on itself")
+    state, out = {}, []
+
+    def visit(i, path):
+        if state.get(i) == "done":
+            return
+        if state.get(i) == "open":
+            cycle = path[path.index(names[i]):] + [names[i]]
+            raise ValueError("block cycle: " + " -> ".join(repr(n) for n in cycle))
+        state[i] = "open"
+        for b in layers[i].blocks:
+            visit(index[b], path + [names[i]])
+        state[i] = "done"
+        out.append(i)
+
+    for i in range(len(layers)):
+        visit(i, [])
+    return out
+
+
+def check_design_header(d) -> None:
+    """A ValueError unless ``d`` is a design of a version this package reads."""
+    if not isinstance(d, dict) or d.get("schema") != SCHEMA:
+        raise ValueError(f"not a unitopia design: expected a JSON object with \"schema\": "
+                         f"\"{SCHEMA}\"")
+    version = d.get("version")
+    if not isinstance(version, int) or version < 1:
+        raise ValueError(f"design: bad version {version!r}; expected an integer >= 1")
+    if version > VERSION:
+        raise ValueError(f"design: version {version} is newer than this unitopia-widget reads "
+                         f"(up to {VERSION}); upgrade the package to load it")
+    if not isinstance(d.get("layers"), list) or not d["layers"]:
+        raise ValueError("design: \"layers\" must be a non-empty list")

@@ -1,0 +1,172 @@
+"""The layout solver: Adam on translations, rotations and one global scale.
+
+Schedule: a *settle* phase (forces at full strength, the scale free to grow on
+closed layers, stops when the loss stops improving) and a *polish* phase
+(scale frozen and shrunk by ``polish_shrink``, forces weakened, small steps)
+that removes the last overlaps. Frames ``(N, 4)`` float32 (x, y, angle in
+degrees, global scale) go to ``on_frame`` every ``frame_every`` iterations;
+``cancel()`` returning True stops the run between iterations and keeps the
+current transforms.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import torch
+
+from .forces import potential
+from .losses import CanvasLoss, CanvasTerms
+from .placement import Placement
+from .raster import RasterGrid, plan_groups, render_samples
+
+
+@dataclass
+class Problem:
+    """Everything the solver needs; ``N`` units, ``L`` layers. Lengths in canvas px."""
+
+    grid: RasterGrid
+    pyramids: list                 # per sprite: list of (1, 1, h, w) tensors, finest first
+    sprite_sides: list[int]        # long side of each sprite's finest level
+    sprite: np.ndarray             # (N,) sprite id per unit
+    layer: np.ndarray              # (N,) layer index per unit
+    half_w: np.ndarray             # (N,) half box width at scale 1 (drawn, no margin)
+    half_h: np.ndarray             # (N,) half box height at scale 1
+    margin: np.ndarray             # (N,) margin fraction: footprint = box * (1 + 2 margin)
+    placement: Placement           # positions and angles, with their constraints
+    terms: CanvasTerms             # containment / fill fields per layer, blocks
+    forces: list                   # per layer: list of forces
+    scale: float                   # initial global scale
+    free_scale: bool               # optimise the scale (some layer has a closed boundary)
+    max_iterations: int = 600
+    polish_iterations: int = 60
+    polish_shrink: float = 0.008
+    polish_force: float = 0.05     # force weight in the polish phase, relative
+    force_weight: float = 0.005    # force pressure relative to overlap
+    lr: float = 0.04               # translation step when marks touch, in mean mark radii
+    lr_travel: float = 0.3         # the step while nothing overlaps (marks travelling), mean radii
+    overlap_target: float = 0.002  # raster overlap share above which steps shrink
+    final_overlap: float = 0.002   # overlap share a closed layout must reach (scale shrinks until)
+    legalize_rounds: int = 10
+    legalize_shrink: float = 0.01
+    patience: int = 12
+    device: str = "cpu"
+
+
+@dataclass
+class Result:
+    """Final transforms and quality; ``center (N, 2)``, ``angle (N,)`` degrees."""
+
+    center: np.ndarray
+    angle: np.ndarray
+    scale: float
+    iterations: int
+    seconds: float
+    cancelled: bool
+    stats: dict = field(default_factory=dict)
+
+
+def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
+          cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None) -> Result:
+    """Run the layout; see the module docstring for the schedule."""
+    p = problem
+    dev = torch.device(p.device)
+    started = time.perf_counter()
+    layer_t = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
+    half_w0 = torch.as_tensor(p.half_w * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
+    half_h0 = torch.as_tensor(p.half_h * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
+    radius = float(np.mean(np.hypot(p.half_w, p.half_h))) * p.scale
+    log_scale = torch.tensor(math.log(p.scale), device=dev, requires_grad=p.free_scale)
+    place = p.placement
+    params = [{"params": place.parameters(), "lr": p.lr * radius}]
+    if place.angle_params():
+        params.append({"params": place.angle_params(), "lr": 0.05})
+    if p.free_scale:
+        params.append({"params": [log_scale], "lr": 0.004})
+    optimizer = torch.optim.Adam(params, betas=(0.8, 0.95))
+    rotating = place.rotating()
+    force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs) for a, fs in enumerate(p.forces) if fs]
+
+    iteration, best, since_best, phase = 0, math.inf, 0, "settle"
+    polish_left = p.polish_iterations
+    loss_value, cancelled = math.inf, False
+    base_lrs = [g["lr"] for g in optimizer.param_groups]
+    gain_max = p.lr_travel / p.lr
+    gain, rounds = 1.0, 0
+    while True:
+        if cancel is not None and cancel():
+            cancelled = True
+            break
+        scale = torch.exp(log_scale)
+        center, angle = place.transforms()
+        hw, hh = scale * half_w0, scale * half_h0
+        groups = plan_groups(hw.detach().cpu().numpy(), hh.detach().cpu().numpy(), p.sprite,
+                             p.sprite_sides, rotating, p.grid.rho)
+        values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
+        loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
+        weight = p.force_weight * (p.polish_force if phase == "polish" else 1.0)
+        for members, fs in force_layers:
+            loss = loss + weight * potential(fs, center[members]).mean() / radius
+        loss = loss + place.penalty()
+        optimizer.zero_grad(set_to_none=True)
+        loss.backward()
+        optimizer.step()
+        place.project(p.grid.canvas, iteration)
+        iteration += 1
+        loss_value = float(loss.detach())
+        if on_frame is not None and iteration % frame_every == 0:
+            on_frame(_frame(place, float(torch.exp(log_scale))))
+        if on_progress is not None:
+            on_progress(iteration, loss_value, p.terms.stats)
+        if phase == "settle":
+            # big steps while marks travel freely, small ones once they press on each other
+            crowded = p.terms.stats["overlap"] > p.overlap_target
+            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.05)
+            optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
+            if loss_value < best * (1 - 1e-3) - 1e-6:
+                best, since_best = loss_value, 0
+            else:
+                since_best += 1
+            if since_best >= p.patience or iteration >= p.max_iterations - p.polish_iterations:
+                phase = "polish"
+                with torch.no_grad():
+                    if p.free_scale:
+                        log_scale -= p.polish_shrink
+                log_scale.requires_grad_(False)
+        else:
+            polish_left -= 1
+            for g, lr0 in zip(optimizer.param_groups, base_lrs):
+                g["lr"] = lr0 * max(polish_left, 1) / p.polish_iterations
+            if polish_left <= 0:
+                if (p.free_scale and p.terms.stats["overlap"] > p.final_overlap
+                        and rounds < p.legalize_rounds and iteration < p.max_iterations):
+                    # still crowded: give up a little scale and settle again
+                    rounds += 1
+                    polish_left = p.polish_iterations // 2
+                    with torch.no_grad():
+                        log_scale -= p.legalize_shrink
+                    continue
+                break
+    center, angle = place.transforms()
+    scale = float(torch.exp(log_scale))
+    if on_frame is not None:
+        on_frame(_frame(place, scale))
+    stats = dict(p.terms.stats, loss=loss_value)
+    return Result(center=center.detach().cpu().numpy().astype(np.float64),
+                  angle=np.degrees(angle.detach().cpu().numpy().astype(np.float64)),
+                  scale=scale, iterations=iteration, seconds=time.perf_counter() - started,
+                  cancelled=cancelled, stats=stats)
+
+
+def _frame(place: Placement, scale: float) -> np.ndarray:
+    """float32 ``(N, 4)``: x, y, angle (degrees), global scale."""
+    with torch.no_grad():
+        center, angle = place.transforms()
+        out = torch.empty((center.shape[0], 4), dtype=torch.float32)
+        out[:, :2] = center.cpu()
+        out[:, 2] = torch.rad2deg(angle).cpu()
+        out[:, 3] = scale
+    return out.numpy()

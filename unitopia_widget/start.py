@@ -1,0 +1,155 @@
+"""Starting positions and orientation targets, layer by layer, from the emitters.
+
+Layers are placed in block order, so a blocked layer starts where its
+blocking layers left room. Without an emitter, marks start packed on a
+hexagonal lattice at the spots the layer's forces pull hardest (or nearest
+the container's centre), the way they would settle.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import torch
+from scipy.spatial import cKDTree
+
+from .curves import CurveTrack
+from .emitters import CurveEmitter, GridEmitter
+from .forces import potential
+from .lattice import Region, fitting_lattice, grid_spacing
+
+DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
+
+
+@dataclass
+class Start:
+    """Starting transforms ``(N, ...)`` and the curve tracks to build."""
+
+    center: np.ndarray
+    angle: np.ndarray
+    movable: np.ndarray
+    turnable: np.ndarray
+    drift: np.ndarray
+    track_specs: list = field(default_factory=list)
+
+    def tracks(self, device) -> list[CurveTrack]:
+        return [CurveTrack(*spec, device=device) for spec in self.track_specs]
+
+
+def _container(layer):
+    from .containers import Container
+    return layer.container if layer.container is not None else Container.canvas()
+
+
+def start_positions(units, layers, order, canvas, scale, grid, generator) -> Start:
+    """Place every unit; ``order`` is the block order of the layers."""
+    n = len(units.layer)
+    s = Start(center=np.zeros((n, 2)), angle=np.zeros(n), movable=np.ones(n, bool),
+              turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
+    radius = np.sqrt(units.area / math.pi) * (1 + 2 * units.margin) * scale   # area-equivalent, px
+    regions, taken = {}, {}
+    for i in order:
+        layer = layers[i]
+        idx = np.nonzero(units.layer == i)[0]
+        ranks = np.argsort(np.argsort(units.order[idx], kind="stable"), kind="stable")
+        container = _container(layer)
+        key = repr(container.to_json())
+        if key not in regions:
+            regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
+            taken[key] = np.zeros((0, 2))
+        region, r = regions[key], radius[idx]
+        emitter = layer.emitter
+        if isinstance(emitter, CurveEmitter):
+            arc = emitter.arc_positions(2 * r, ranks)
+            s.center[idx] = emitter.curve.at(arc)
+            s.drift[idx] = emitter.drift(arc)
+            if emitter.mode != "free":
+                s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks,
+                                      emitter.speed > 0))
+        elif isinstance(emitter, GridEmitter):
+            spacing = grid_spacing(region, len(idx)) * 0.98
+            lattice = fitting_lattice(region, len(idx), spacing, min(float(r.mean()), spacing / 2))
+            s.center[idx] = emitter.place(lattice, ranks)
+            s.drift[idx] = emitter.drift(s.center[idx])
+        else:
+            s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
+        taken[key] = np.concatenate([taken[key], s.center[idx]])
+        speed = 1.0 if emitter is None else emitter.speed
+        s.movable[idx] = speed > 0
+        s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
+        s.angle[idx], s.turnable[idx] = _angles(layer)
+    jitter = torch.rand((n, 2), generator=generator).numpy() - 0.5
+    s.center += jitter * 1e-3 * radius[:, None] * s.movable[:, None]
+    return s
+
+
+def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canvas) -> np.ndarray:
+    """Lattice spots ranked by the layer's forces (or closeness to the centre)."""
+    count = len(r)
+    spacing = 2 * float(np.sqrt((r ** 2).mean())) * 1.02
+    if layer.boundary == "closed" and layer.fill is None:
+        spacing = min(spacing, grid_spacing(region, count + len(taken)))
+    lattice = fitting_lattice(region, count + len(taken), spacing, min(float(r.mean()), spacing / 2))
+    if len(taken):
+        near = cKDTree(taken).query(lattice, k=1)[0]
+        free = lattice[near > 0.9 * spacing]
+        lattice = free if len(free) >= count else lattice[np.argsort(-near)[:max(count, 1)]]
+    pts = torch.tensor(lattice, dtype=torch.float64)
+    if layer.forces:
+        cost = potential(layer.forces, pts).numpy()
+    else:
+        cx, cy = container.centroid(canvas)
+        cost = np.hypot(lattice[:, 0] - cx, lattice[:, 1] - cy)
+    best = lattice[np.argsort(cost, kind="stable")[:count]]
+    if len(best) < count:
+        raise ValueError(f"layer {layer.name!r}: its container is too small for {count} marks")
+    return best[ranks]
+
+
+def _angles(layer):
+    """(starting angle in radians, turnable) for the units of ``layer``."""
+    o = layer.orientation
+    if isinstance(o, (int, float)) and o is not None:
+        return math.radians(o), layer.rotate
+    return 0.0, bool(layer.rotate or o in ("to_center", "along_emitter"))
+
+
+def orientation_targets(units, layers, canvas, device):
+    """A callable ``(center, tangent) -> (target (N, 2), mask (N,))``, or None when no layer
+    asks for "to_center" or "along_emitter". Units on a curve track bring their tangent;
+    others take the tangent of the nearest point of their layer's curve."""
+    wanted = [i for i, layer in enumerate(layers) if layer.orientation in ("to_center", "along_emitter")]
+    if not wanted:
+        return None
+    dev = torch.device(device)
+    layer_t = torch.as_tensor(units.layer, device=dev)
+    centers = torch.zeros((len(layers), 2), device=dev)
+    for i in wanted:
+        layer = layers[i]
+        if layer.orientation == "along_emitter" and not isinstance(layer.emitter, CurveEmitter):
+            raise ValueError(f"layer {layer.name!r}: orientation='along_emitter' needs a "
+                             f"uw.CurveEmitter; this layer has {layer.emitter!r}")
+        centers[i] = torch.tensor(_container(layer).centroid(canvas), dtype=torch.float32)
+    to_center = torch.tensor([layers[i].orientation == "to_center" for i in range(len(layers))],
+                             device=dev)[layer_t]
+    along = torch.tensor([layers[i].orientation == "along_emitter" for i in range(len(layers))],
+                         device=dev)[layer_t]
+    mask = (to_center | along).to(torch.float32)
+
+    def targets(center: torch.Tensor, tangent: torch.Tensor):
+        target = centers[layer_t] - center
+        if bool(along.any()):
+            tan = tangent.clone()
+            missing = along & (tangent.norm(dim=1) < 0.5)
+            for i in wanted:
+                sel = missing & (layer_t == i)
+                if bool(sel.any()):
+                    curve = layers[i].emitter.curve
+                    arc = curve.nearest_arc(center[sel].cpu().numpy())
+                    tan[sel] = torch.tensor(curve.frame(arc)[0], dtype=center.dtype, device=dev)
+            up = torch.stack([tan[:, 1], -tan[:, 0]], dim=1)   # the tangent turned -90 degrees
+            target = torch.where(along[:, None], up, target)
+        return target, mask
+
+    return targets

@@ -1,0 +1,393 @@
+"""SVG safety: parse untrusted SVG into a clean tree, serialise it, render it.
+
+A sanitised tree has local tag names (no namespace), SVG attributes, plain
+``href`` (never ``xlink:href``) pointing only at ``#id`` or ``data:image/...``,
+no scripts, event handlers, foreign content or external URLs. Only sanitised
+text is ever given to the renderer, which sees an empty resources directory.
+"""
+from __future__ import annotations
+
+import base64
+import io
+import re
+import tempfile
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import resvg_py
+from defusedxml import DefusedXmlException
+from defusedxml.ElementTree import DefusedXMLParser
+from PIL import Image, ImageColor
+
+from .images import MAX_PIXELS, parse_data_url, probe_size
+
+SVG_NS = "http://www.w3.org/2000/svg"
+XLINK_NS = "http://www.w3.org/1999/xlink"
+XML_NS = "http://www.w3.org/XML/1998/namespace"
+MAX_SVG_BYTES = 5_000_000
+MAX_SVG_ELEMENTS = 50_000
+MAX_SVG_DEPTH = 200
+_DROPPED = {"script", "foreignobject", "iframe", "embed", "object", "handler", "listener"}
+_ANIMATIONS = {"animate", "set", "animatetransform", "animatemotion", "animatecolor"}
+_XML_KEPT = {"space", "lang"}
+_URL = re.compile(r"""url\(\s*(['"]?)(.*?)\1\s*\)""", re.I | re.S)
+_IMPORT = re.compile(r"@import[^;]*(;|$)", re.I)
+_URL_FUNCS = re.compile(r"(?<![\w-])(?:-webkit-)?(?:image-set|image|cross-fade|src|element)\s*\("
+                        r"[^()]*(?:\([^()]*\)[^()]*)*\)?", re.I)
+_ESCAPED = re.compile(r"[^;{}]*\\[^;{}]*")
+
+
+class _Builder(ET.TreeBuilder):
+    """A tree builder that refuses too many or too deeply nested elements."""
+
+    def __init__(self):
+        super().__init__()
+        self.count = 0
+        self.depth = 0
+
+    def start(self, tag, attrs):
+        self.count += 1
+        self.depth += 1
+        if self.count > MAX_SVG_ELEMENTS:
+            raise ValueError(f"SVG has more than the limit of {MAX_SVG_ELEMENTS:,} elements")
+        if self.depth > MAX_SVG_DEPTH:
+            raise ValueError(f"SVG nests elements deeper than the limit of {MAX_SVG_DEPTH} levels")
+        return super().start(tag, attrs)
+
+    def end(self, tag):
+        self.depth -= 1
+        return super().end(tag)
+
+
+def _split(name: str) -> tuple[str | None, str]:
+    if name.startswith("{"):
+        ns, local = name[1:].split("}", 1)
+        return ns, local
+    return None, name
+
+
+def _clean_data_image(url: str, nested: int) -> str | None:
+    """The data:image URL itself if safe (nested SVG is sanitised), else None."""
+    try:
+        mime, payload = parse_data_url(url)
+    except ValueError:
+        return None
+    if mime == "image/svg+xml":
+        if nested >= 1:
+            return None
+        try:
+            clean = sanitize_svg(payload, _nested=nested + 1)
+        except ValueError:
+            return None
+        return "data:image/svg+xml;base64," + base64.b64encode(clean.encode()).decode()
+    size = probe_size(payload)
+    if size is None or size[0] * size[1] > MAX_PIXELS:
+        return None
+    return url.strip()
+
+
+def _clean_url(url: str, nested: int) -> str | None:
+    """``url`` if it is an in-document ``#id`` or a safe data:image URL, else None."""
+    url = url.strip()
+    if re.fullmatch(r"#[^\s#'\"()<>]+", url):
+        return url
+    if url[:11].lower() == "data:image/":
+        return _clean_data_image(url, nested)
+    return None
+
+
+def clean_css(css: str, nested: int = 0) -> str:
+    """CSS without ``@import``, escapes, or ``url()`` other than ``#id``/data:image.
+
+    Declarations or selectors containing a backslash escape are removed whole,
+    and URL-taking functions other than ``url()`` become ``none``.
+    """
+    css = _IMPORT.sub("", _ESCAPED.sub("", css))
+    css = _URL_FUNCS.sub("none", css)
+
+    def repl(m: re.Match) -> str:
+        url = _clean_url(m.group(2), nested)
+        if url is None:
+            return "none"
+        return f"url({url})" if url.startswith("#") else f'url("{url}")'
+    return _URL.sub(repl, css)
+
+
+def _clean_element(el: ET.Element, nested: int) -> None:
+    """Rewrite one element's tag and attributes in place (children untouched)."""
+    el.tag = _split(el.tag)[1]
+    attrs = {}
+    for name, value in el.attrib.items():
+        ns, local = _split(name)
+        if ns not in (None, XLINK_NS, XML_NS) or local.lower().startswith("on"):
+            continue
+        if ns == XML_NS:
+            if local in _XML_KEPT:
+                attrs[name] = value
+            continue
+        if local == "href":
+            url = None if el.tag == "a" else _clean_url(value, nested)
+            if url is not None:
+                attrs["href"] = url
+            continue
+        if ns == XLINK_NS:
+            continue
+        if local == "style" or "url(" in value.lower() or "(" in value and _URL_FUNCS.search(value):
+            value = clean_css(value, nested)
+        attrs[local] = value
+    el.attrib.clear()
+    el.attrib.update(attrs)
+    if el.tag == "style" and el.text:
+        el.text = clean_css(el.text, nested)
+
+
+def _unwanted(el: ET.Element) -> bool:
+    ns, local = _split(el.tag) if isinstance(el.tag, str) else ("", "")
+    if ns not in (None, SVG_NS) or local.lower() in _DROPPED:
+        return True
+    if local.lower() in _ANIMATIONS:
+        target = _split(el.get("attributeName", ""))[1].strip().lower()
+        return target == "href" or target.startswith("on") or ":" in target
+    return False
+
+
+def parse_svg(text: str | bytes, _nested: int = 0) -> ET.Element:
+    """Parse untrusted SVG text or bytes into a sanitised tree (see module doc).
+
+    Raises ValueError for entity declarations, malformed XML, a root that is
+    not ``svg``, or input over :data:`MAX_SVG_BYTES` / :data:`MAX_SVG_ELEMENTS`.
+    """
+    if isinstance(text, (bytes, bytearray, memoryview)):
+        data = bytes(text)
+        size = len(data)
+    elif isinstance(text, str):
+        data = text.lstrip("\ufeff")
+        size = len(data) if len(data) * 4 <= MAX_SVG_BYTES else len(data.encode("utf-8", "replace"))
+    else:
+        raise ValueError(f"expected SVG text, got {type(text).__name__}")
+    if size > MAX_SVG_BYTES:
+        raise ValueError(f"SVG is {size:,} bytes, over the limit of {MAX_SVG_BYTES:,} bytes (5 MB)")
+    builder = _Builder()
+    parser = DefusedXMLParser(target=builder, forbid_dtd=False, forbid_entities=True,
+                              forbid_external=True)
+    try:
+        parser.feed(data)
+        root = parser.close()
+    except DefusedXmlException as exc:
+        raise ValueError(f"SVG refused: it declares an XML entity or external reference "
+                         f"({type(exc).__name__}); entity declarations are not allowed") from None
+    except ET.ParseError as exc:
+        raise ValueError(f"SVG is not well-formed XML: {exc}") from None
+    except (UnicodeError, RecursionError, OverflowError) as exc:
+        raise ValueError(f"SVG could not be parsed: {exc}") from None
+    if _split(root.tag) not in ((None, "svg"), (SVG_NS, "svg")):
+        raise ValueError(f"not an SVG document: the root element is "
+                         f"<{_split(root.tag)[1]}>, not <svg>")
+    _clean_element(root, _nested)
+    stack = [root]
+    while stack:
+        parent = stack.pop()
+        for child in list(parent):
+            if _unwanted(child):
+                parent.remove(child)
+                continue
+            _clean_element(child, _nested)
+            stack.append(child)
+    return root
+
+
+def _shallow(root: ET.Element, **attrs: str) -> ET.Element:
+    """A new root with ``root``'s attributes updated by ``attrs``, sharing its children."""
+    out = ET.Element(root.tag, {k: v for k, v in root.attrib.items() if k != "xmlns"})
+    out.attrib.update(attrs)
+    out.text = root.text
+    out.extend(list(root))
+    return out
+
+
+def serialize(root: ET.Element) -> str:
+    """Standalone SVG text of a sanitised tree (the tree is not modified)."""
+    return ET.tostring(_shallow(root, xmlns=SVG_NS), encoding="unicode")
+
+
+def sanitize_svg(text: str | bytes, _nested: int = 0) -> str:
+    """Sanitised, well-formed, standalone SVG text (see :func:`parse_svg`)."""
+    return serialize(parse_svg(text, _nested))
+
+
+def render_svg(root: ET.Element, width: int, height: int) -> np.ndarray:
+    """uint8 ``(height, width, 4)`` straight RGBA of a sanitised tree.
+
+    The root's own ``width``/``height`` are replaced by the pixel size, so its
+    viewBox (or user space) is stretched over exactly ``width x height`` pixels.
+    """
+    if width < 1 or height < 1 or width * height > MAX_PIXELS:
+        raise ValueError(f"render size {width} x {height} is out of range")
+    text = serialize(_shallow(root, width=str(int(width)), height=str(int(height)),
+                              preserveAspectRatio="none"))
+    with tempfile.TemporaryDirectory(prefix="unitopia-svg-") as empty:
+        try:
+            png = resvg_py.svg_to_bytes(svg_string=text, resources_dir=empty)
+        except (KeyboardInterrupt, SystemExit):
+            raise
+        except BaseException as exc:  # resvg panics surface as BaseException
+            raise ValueError(f"SVG could not be rendered: {exc}") from None
+    with Image.open(io.BytesIO(bytes(png))) as img:
+        rgba = np.asarray(img.convert("RGBA"))
+    if rgba.shape[:2] != (height, width):
+        out = np.zeros((height, width, 4), np.uint8)
+        h, w = min(height, rgba.shape[0]), min(width, rgba.shape[1])
+        out[:h, :w] = rgba[:h, :w]
+        rgba = out
+    return rgba
+
+
+# --- Rewriting a sanitised tree for embedding: scoping and recolouring -------
+
+PAINT_PROPERTIES = ("fill", "stroke", "stop-color", "flood-color", "lighting-color", "color")
+_SHAPES = {"path", "rect", "circle", "ellipse", "polygon", "polyline", "line", "text", "use"}
+_NON_PAINTING = {"clippath", "mask", "pattern", "marker", "symbol", "defs", "lineargradient",
+                 "radialgradient", "filter", "style", "title", "desc", "metadata"}
+_DECL = re.compile(r"(?P<prop>[A-Za-z-]+)(?P<sep>\s*:\s*)(?P<value>[^;{}]*)")
+_NAME = r"-?[A-Za-z_][\w-]*"
+
+
+def _css_blocks(css: str, selector_fn, decl_fn) -> str:
+    """Rewrite CSS rule by rule: selectors through ``selector_fn``, bodies through ``decl_fn``.
+
+    ``@media``/``@supports`` are entered; other at-rules are kept unchanged.
+    """
+    css = re.sub(r"/\*.*?\*/", "", css, flags=re.S)
+    out, pos = [], 0
+    while True:
+        start = css.find("{", pos)
+        if start < 0:
+            break
+        depth, end = 1, start + 1
+        while end < len(css) and depth:
+            depth += {"{": 1, "}": -1}.get(css[end], 0)
+            end += 1
+        prelude, body = css[pos:start].strip(), css[start + 1:end - 1]
+        prelude = prelude.rsplit(";", 1)[-1].strip()  # drop stray statements such as @charset
+        if prelude.lower().startswith(("@media", "@supports")):
+            out.append(f"{prelude}{{{_css_blocks(body, selector_fn, decl_fn)}}}")
+        elif prelude.startswith("@"):
+            out.append(f"{prelude}{{{body}}}")
+        else:
+            selectors = ",".join(selector_fn(s.strip()) for s in prelude.split(",") if s.strip())
+            out.append(f"{selectors}{{{decl_fn(body)}}}")
+        pos = end
+    return "\n".join(out)
+
+
+def _map_declarations(body: str, fn) -> str:
+    """Apply ``fn(property, value) -> value`` to each ``property: value`` declaration."""
+    return _DECL.sub(lambda m: m["prop"] + m["sep"] + fn(m["prop"].lower(), m["value"]), body)
+
+
+def _attribute_pass(root: ET.Element, attr_fn, decl_fn, selector_fn) -> None:
+    """Visit every attribute (``attr_fn(name, value) -> value``), style attribute and <style>."""
+    for el in root.iter():
+        for name, value in list(el.attrib.items()):
+            if name == "style":
+                el.set(name, _map_declarations(value, decl_fn))
+            else:
+                el.set(name, attr_fn(name, value))
+        if el.tag == "style" and el.text:
+            el.text = _css_blocks(el.text, selector_fn, lambda b: _map_declarations(b, decl_fn))
+
+
+def scope(root: ET.Element, prefix: str) -> None:
+    """Prefix ids and class names with ``prefix-`` and confine CSS rules to ``#prefix``.
+
+    Rewrites references (``href="#id"``, ``url(#id)``) to match, so several
+    marks sharing class names or ids can live in one document.
+    """
+    rename_urls = lambda v: re.sub(r"url\(\s*(['\"]?)#", lambda m: f"url({m[1]}#{prefix}-", v)
+
+    def attr_fn(name, value):
+        if name in ("id", "class"):
+            return " ".join(f"{prefix}-{token}" for token in value.split())
+        if name == "href" and value.startswith("#"):
+            return f"#{prefix}-{value[1:]}"
+        return rename_urls(value)
+
+    def selector_fn(selector):
+        parts = re.split(r"(\[[^\]]*\])", selector)
+        for i in range(0, len(parts), 2):
+            parts[i] = re.sub(rf"([.#])({_NAME})", lambda m: f"{m[1]}{prefix}-{m[2]}", parts[i])
+        return f"#{prefix} " + "".join(parts)
+
+    _attribute_pass(root, attr_fn, lambda prop, value: rename_urls(value), selector_fn)
+
+
+def parse_color(value: str) -> tuple[int, int, int] | None:
+    """(r, g, b) of a CSS colour value, or None for none/url()/currentColor/unparseable."""
+    if not isinstance(value, str):
+        return None
+    value = re.sub(r"\s*!important\s*$", "", value.strip(), flags=re.I)
+    if not value or value.lower() in ("none", "currentcolor", "inherit", "transparent"):
+        return None
+    try:
+        return tuple(ImageColor.getrgb(value)[:3])
+    except ValueError:
+        return None
+
+
+def _paint_pass(root: ET.Element, fn) -> None:
+    """Apply ``fn(rgb, value) -> value`` to every paint colour in ``root``."""
+    def on_value(prop, value):
+        rgb = parse_color(value) if prop in PAINT_PROPERTIES else None
+        return value if rgb is None else fn(rgb, value)
+    _attribute_pass(root, on_value, on_value, lambda s: s)
+
+
+def paint_colors(root: ET.Element) -> list[tuple[int, int, int]]:
+    """The distinct paint colours used in ``root``, in order of appearance."""
+    found: list[tuple[int, int, int]] = []
+    _paint_pass(root, lambda rgb, value: found.append(rgb) or value)
+    return list(dict.fromkeys(found))
+
+
+def uses_default_fill(root: ET.Element) -> bool:
+    """True if some painting element inherits the initial fill (black) from no one.
+
+    Approximation: any ``<style>`` that mentions ``fill`` counts as setting it.
+    """
+    if any("fill" in (el.text or "") for el in root.iter("style")):
+        return False
+    stack = [(root, False)]
+    while stack:
+        el, has_fill = stack.pop()
+        if el.tag.lower() in _NON_PAINTING:
+            continue
+        has_fill = has_fill or "fill" in el.attrib or "fill" in el.get("style", "")
+        if el.tag in _SHAPES and not has_fill:
+            return True
+        stack.extend((child, has_fill) for child in el)
+    return False
+
+
+def uses_current_color(root: ET.Element) -> bool:
+    """True if some attribute or <style> rule of ``root`` paints with ``currentColor``."""
+    return any("currentcolor" in v.lower() for el in root.iter()
+               for v in [*el.attrib.values(), (el.text or "") if el.tag == "style" else ""])
+
+
+def recolor(root: ET.Element, color: str) -> None:
+    """Recolour an icon in place to ``color``.
+
+    One paint colour: it is replaced. Several: every colour except near-white
+    and near-black is replaced (those stay as details); if all are near-black
+    or near-white, the near-black ones are replaced.
+    """
+    target = parse_color(color)
+    if target is None:
+        raise ValueError(f"not a CSS colour: {color!r}")
+    colors = paint_colors(root)
+    near_white = {c for c in colors if min(c) >= 230}
+    near_black = {c for c in colors if max(c) <= 40}
+    chosen = set(colors) if len(colors) == 1 else \
+        (set(colors) - near_white - near_black) or near_black or set(colors)
+    hex_color = "#%02x%02x%02x" % target
+    _paint_pass(root, lambda rgb, value: hex_color if rgb in chosen else value)
