@@ -29,21 +29,30 @@ ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-f
         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 # Runs in the page: mounts n marks, streams frames at `hz` for `seconds`, reports counts.
+# Upright marks are the default (rotate=False); "rotating" turns every mark each frame.
 STREAM_JS = """
-async ([n, seconds, hz]) => {
+async ([n, seconds, hz, rotating]) => {
   const s = unitopia.defaultState();
   s.marks = [
     {layer: 'layer-1', src: unitopia.svgMark('star', '#4e79a7'), aspect: 1},
     {layer: 'layer-1', src: unitopia.svgMark('circle', '#e15759'), aspect: 1},
   ];
   const side = Math.sqrt(800 * 500 * 0.55 / n);
-  const units = [], base = [];
+  const units = [], base = new Float32Array(3 * n);
   for (let i = 0; i < n; i++) {
     units.push([0, i % 2, side, side]);
-    base.push([Math.random() * 800, Math.random() * 500, Math.random() * 360]);
+    base.set([Math.random() * 800, Math.random() * 500, rotating ? Math.random() * 360 : 0], 3 * i);
   }
-  const frameAt = (t) => unitopia.f32(base.map(([x, y, a], i) =>
-    [x + 20 * Math.sin(t + i), y + 20 * Math.cos(t + 0.5 * i), a + 40 * t, 0.6 + 0.4 * Math.min(1, t / 2)]));
+  const frameAt = (t) => {  // what Python sends: float32 (N, 4) bytes
+    const f = new Float32Array(4 * n), scale = 0.6 + 0.4 * Math.min(1, t / 2);
+    for (let i = 0; i < n; i++) {
+      f[4 * i] = base[3 * i] + 20 * Math.sin(t + i);
+      f[4 * i + 1] = base[3 * i + 1] + 20 * Math.cos(t + 0.5 * i);
+      f[4 * i + 2] = rotating ? base[3 * i + 2] + 40 * t : 0;
+      f[4 * i + 3] = scale;
+    }
+    return new DataView(f.buffer);
+  };
   s.units = unitopia.f32(units);
   s.colors = unitopia.u8(units.map(() => [90, 90, 90, 255]));
   s.frame = frameAt(0);
@@ -66,7 +75,7 @@ async ([n, seconds, hz]) => {
   const elapsed = (performance.now() - t0) / 1000;
   const paints = stats.paints - p0;
   unitopia.unmount();
-  return {n, pushed, elapsed, paints, paintMs: (stats.paintMs - ms0) / Math.max(1, paints)};
+  return {n, rotating, pushed, elapsed, paints, paintMs: (stats.paintMs - ms0) / Math.max(1, paints)};
 }
 """
 
@@ -105,16 +114,18 @@ def main() -> None:
             page.goto(url)
             page.wait_for_function("window.unitopiaReady === true")
             for n in opts.sizes:
-                rows.append(page.evaluate(STREAM_JS, [n, opts.seconds, opts.hz]))
+                for rotating in (False, True):
+                    rows.append(page.evaluate(STREAM_JS, [n, opts.seconds, opts.hz, rotating]))
             browser.close()
     finally:
         server.shutdown()
         server.server_close()
 
     print(f"front-end animation, headless Chromium, software rendering, {os.cpu_count()} cores, {platform.machine()}")
-    print(f"{'marks':>6} {'frames in':>10} {'in/s':>6} {'painted':>8} {'fps':>6} {'ms/paint':>9}")
+    print(f"{'marks':>6} {'marks are':>9} {'frames in':>10} {'in/s':>6} {'painted':>8} {'fps':>6} {'ms/paint':>9}")
     for r in rows:
-        print(f"{r['n']:>6} {r['pushed']:>10} {r['pushed'] / r['elapsed']:>6.1f} {r['paints']:>8} "
+        kind = "rotating" if r["rotating"] else "upright"
+        print(f"{r['n']:>6} {kind:>9} {r['pushed']:>10} {r['pushed'] / r['elapsed']:>6.1f} {r['paints']:>8} "
               f"{r['paints'] / r['elapsed']:>6.1f} {r['paintMs']:>9.2f}")
 
 

@@ -115,7 +115,9 @@ def initial_scale(units: Units, layers, canvas) -> tuple[float, bool, list]:
             fill = layer.fill or DEFAULT_OPEN_FILL
             fixed.append(math.sqrt(fill * area / sharing))
         else:
-            free.append(math.sqrt(0.7 * area / sharing))
+            # start loose: compact marks at 75% coverage, spiky ones (stars) lower
+            start = min(max(0.75 * layer.mark.fill_fraction / 0.785, 0.35), 0.75)
+            free.append(math.sqrt(start * area / sharing))
     if fixed:
         return min(fixed), False, areas
     return min(free), True, areas
@@ -162,6 +164,9 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    sprite=units.layer, layer=units.layer, half_w=units.half_w,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
+                   # a closed layer fills its container: forces only decide where gaps go
+                   force_scale=[0.2 if layer.boundary == "closed" and layer.fill is None else 1.0
+                                for layer in layers],
                    free_scale=free_scale, max_iterations=cap, device=device)
 
 

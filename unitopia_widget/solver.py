@@ -41,6 +41,7 @@ class Problem:
     forces: list                   # per layer: list of forces
     scale: float                   # initial global scale
     free_scale: bool               # optimise the scale (some layer has a closed boundary)
+    force_scale: list | None = None  # per layer: weight of its forces (None: all 1)
     max_iterations: int = 600
     polish_iterations: int = 60
     polish_shrink: float = 0.008
@@ -49,9 +50,11 @@ class Problem:
     lr: float = 0.04               # translation step when marks touch, in mean mark radii
     lr_travel: float = 0.3         # the step while nothing overlaps (marks travelling), mean radii
     overlap_target: float = 0.002  # raster overlap share above which steps shrink
-    final_overlap: float = 0.002   # overlap share a closed layout must reach (scale shrinks until)
+    final_overlap: float = 0.001   # overlap share a closed layout must reach (scale shrinks until)
     legalize_rounds: int = 10
-    legalize_shrink: float = 0.01
+    legalize_shrink: float = 0.005
+    grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
+    scale_step: float = 0.003      # log-scale step of the fill controller per iteration
     patience: int = 12
     device: str = "cpu"
 
@@ -79,16 +82,16 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     half_w0 = torch.as_tensor(p.half_w * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
     half_h0 = torch.as_tensor(p.half_h * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
     radius = float(np.mean(np.hypot(p.half_w, p.half_h))) * p.scale
-    log_scale = torch.tensor(math.log(p.scale), device=dev, requires_grad=p.free_scale)
+    log_scale = torch.tensor(math.log(p.scale), device=dev)
     place = p.placement
     params = [{"params": place.parameters(), "lr": p.lr * radius}]
     if place.angle_params():
         params.append({"params": place.angle_params(), "lr": 0.05})
-    if p.free_scale:
-        params.append({"params": [log_scale], "lr": 0.004})
     optimizer = torch.optim.Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
-    force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs) for a, fs in enumerate(p.forces) if fs]
+    force_scale = p.force_scale or [1.0] * len(p.forces)
+    force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs, force_scale[a])
+                    for a, fs in enumerate(p.forces) if fs]
 
     iteration, best, since_best, phase = 0, math.inf, 0, "settle"
     polish_left = p.polish_iterations
@@ -108,8 +111,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
         loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
         weight = p.force_weight * (p.polish_force if phase == "polish" else 1.0)
-        for members, fs in force_layers:
-            loss = loss + weight * potential(fs, center[members]).mean() / radius
+        for members, fs, k in force_layers:
+            loss = loss + k * weight * potential(fs, center[members]).mean() / radius
         loss = loss + place.penalty()
         optimizer.zero_grad(set_to_none=True)
         loss.backward()
@@ -118,24 +121,30 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         iteration += 1
         loss_value = float(loss.detach())
         if on_frame is not None and iteration % frame_every == 0:
-            on_frame(_frame(place, float(torch.exp(log_scale))))
+            on_frame(_frame(place, float(torch.exp(log_scale.detach()))))
         if on_progress is not None:
             on_progress(iteration, loss_value, p.terms.stats)
         if phase == "settle":
             # big steps while marks travel freely, small ones once they press on each other
-            crowded = p.terms.stats["overlap"] > p.overlap_target
-            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.05)
-            optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
             if loss_value < best * (1 - 1e-3) - 1e-6:
                 best, since_best = loss_value, 0
             else:
                 since_best += 1
+            overlap = p.terms.stats["overlap"]
+            crowded = overlap > p.overlap_target
+            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.05)
+            optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
+            if p.free_scale:
+                # the scale grows while marks have room and gives way when they crowd
+                if overlap < 0.5 * p.grow_overlap:
+                    log_scale += p.scale_step
+                    since_best = 0
+                elif overlap > 1.5 * p.grow_overlap:
+                    log_scale -= p.scale_step
             if since_best >= p.patience or iteration >= p.max_iterations - p.polish_iterations:
                 phase = "polish"
-                with torch.no_grad():
-                    if p.free_scale:
-                        log_scale -= p.polish_shrink
-                log_scale.requires_grad_(False)
+                if p.free_scale:
+                    log_scale -= p.polish_shrink
         else:
             polish_left -= 1
             for g, lr0 in zip(optimizer.param_groups, base_lrs):
@@ -145,9 +154,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                         and rounds < p.legalize_rounds and iteration < p.max_iterations):
                     # still crowded: give up a little scale and settle again
                     rounds += 1
-                    polish_left = p.polish_iterations // 2
-                    with torch.no_grad():
-                        log_scale -= p.legalize_shrink
+                    polish_left = p.polish_iterations // 3
+                    log_scale -= max(p.legalize_shrink, p.terms.stats["overlap"])
                     continue
                 break
     center, angle = place.transforms()

@@ -3,7 +3,7 @@
 // at, so drawing is one drawImage per mark. A bigger size is made only when the marks
 // grow past the current one (the scale grows as a layout fills its container).
 
-const MIN_PX = 32;
+const MIN_PX = 8;
 const MAX_PX = 512;
 
 export const sizeBucket = (px) => Math.min(MAX_PX, Math.max(MIN_PX, 2 ** Math.ceil(Math.log2(Math.max(1, px)))));

@@ -1,5 +1,7 @@
 // Paints the marks: one setTransform + one drawImage per mark, in unit order (later
 // units on top). A mark whose sprite is still loading is a plain ellipse in its colour.
+// Upright marks (angle 0: every layout without rotation) skip the setTransform and
+// draw axis-aligned, which software canvases blit about twice as fast.
 // units: Float32Array (N, 4) [layer, mark, base w, base h]; frame: (N, 4) [x, y, deg, scale].
 
 const RAD = Math.PI / 180;
@@ -7,6 +9,7 @@ const RAD = Math.PI / 180;
 export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
   const n = Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4;
   let maxSide = 0;
+  let upright = false; // is the base transform (no rotation) set?
   for (let i = 0; i < n; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
@@ -16,17 +19,27 @@ export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
     if (!(w > 0 && h > 0) || !Number.isFinite(x + y)) continue;
     if (w > maxSide) maxSide = w;
     if (h > maxSide) maxSide = h;
-    const a = frame[4 * i + 2] * RAD;
-    const c = Math.cos(a) * k;
-    const sn = Math.sin(a) * k;
-    ctx.setTransform(c, sn, -sn, c, x * k, y * k);
+    const deg = frame[4 * i + 2];
+    let cx = 0;
+    let cy = 0;
+    if (deg === 0) {
+      if (!upright) ctx.setTransform(k, 0, 0, k, 0, 0);
+      upright = true;
+      cx = x;
+      cy = y;
+    } else {
+      const c = Math.cos(deg * RAD) * k;
+      const sn = Math.sin(deg * RAD) * k;
+      ctx.setTransform(c, sn, -sn, c, x * k, y * k);
+      upright = false;
+    }
     const bmp = bitmaps.get(units[4 * i + 1]);
     if (bmp) {
-      ctx.drawImage(bmp, -w / 2, -h / 2, w, h);
+      ctx.drawImage(bmp, cx - w / 2, cy - h / 2, w, h);
     } else {
       ctx.fillStyle = rgba(colors, i);
       ctx.beginPath();
-      ctx.ellipse(0, 0, w / 2, h / 2, 0, 0, 2 * Math.PI);
+      ctx.ellipse(cx, cy, w / 2, h / 2, 0, 0, 2 * Math.PI);
       ctx.fill();
     }
   }
@@ -36,7 +49,6 @@ export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
 }
 
 function outlineSelected(ctx, k, units, frame, n, selected) {
-  ctx.lineWidth = 2 / k;
   for (const i of selected) {
     if (i < 0 || i >= n) continue;
     const s = frame[4 * i + 3];
@@ -50,7 +62,7 @@ function outlineSelected(ctx, k, units, frame, n, selected) {
     ctx.lineWidth = 4 / k;
     ctx.strokeRect(-w / 2 - 2 / k, -h / 2 - 2 / k, w + 4 / k, h + 4 / k);
     ctx.strokeStyle = "#1a73e8";
-    ctx.lineWidth = 2 / k;
+    ctx.lineWidth = 2 / k; // device px: the outline stays thin at any zoom
     ctx.strokeRect(-w / 2 - 2 / k, -h / 2 - 2 / k, w + 4 / k, h + 4 / k);
   }
 }

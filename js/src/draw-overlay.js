@@ -69,7 +69,7 @@ function drawEmitter(ctx, layer, canvas, color, active, unit) {
   });
 }
 
-export function drawPoint(ctx, p, color, hot, unit) {
+function drawPoint(ctx, p, color, hot, unit) {
   ctx.beginPath();
   ctx.arc(p[0], p[1], 7 * unit, 0, 2 * Math.PI);
   ctx.fillStyle = color;

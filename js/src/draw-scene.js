@@ -63,7 +63,7 @@ function paintContainer(ctx, c, canvas, color, active, images) {
 }
 
 /** Eraser strokes: polylines of a given width removed from what is drawn so far. */
-export function paintCuts(ctx, cuts) {
+function paintCuts(ctx, cuts) {
   if (!Array.isArray(cuts) || !cuts.length) return;
   ctx.save();
   ctx.globalCompositeOperation = "destination-out";

@@ -27,9 +27,6 @@ export function decodeUint8(value) {
   return new Uint8Array(b.buffer, b.offset, b.length);
 }
 
-/** Number of rows of a (N, cols) float32 array. */
-export const rows = (arr, cols = 4) => (arr ? arr.length / cols : 0);
-
 /** Shortest signed difference b - a between two angles in degrees. */
 export function angleDelta(a, b) {
   return ((((b - a) % 360) + 540) % 360) - 180;

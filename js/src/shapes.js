@@ -3,7 +3,7 @@
 import { sampleCurve } from "./bezier.js";
 import { ellipsePolygon, pointInPolygon } from "./geometry.js";
 
-export const PALETTE = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#b07aa1", "#edc948", "#ff9da7"];
+const PALETTE = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#b07aa1", "#edc948", "#ff9da7"];
 export const layerColor = (i) => PALETTE[i % PALETTE.length];
 
 /** The container's outline as a Path2D (fill it with "evenodd"), or null for image kinds. */

@@ -23,7 +23,9 @@ import { download } from "./export.js";
 export function renderView({ model, el, signal }) {
   const s = session(model);
   const stage = createStage(signal);
-  const root = h("div", { class: "unitopia", dataset: { unitopia: "", status: "idle", frames: "0" }, tabindex: "0" });
+  // data-lm-suppress-shortcuts: JupyterLab leaves keys pressed in the widget alone
+  // (so Delete, Backspace and Ctrl+Z edit the sketch, not the notebook).
+  const root = h("div", { class: "unitopia", dataset: { unitopia: "", status: "idle", frames: "0", lmSuppressShortcuts: "true" }, tabindex: "0" });
   const stats = { paints: 0, paintMs: 0, framesReceived: 0 };
   root.unitopiaStats = stats; // read by benchmarks/frontend_fps.py
   const hitCtx = document.createElement("canvas").getContext("2d");
@@ -163,7 +165,6 @@ export function renderView({ model, el, signal }) {
     panels[3].update();
     redraw("marks");
   }, signal);
-  onModel(model, ["change:titles"], () => {}, signal);
   onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
   listen(s.bus, "ui", () => {
     updatePanels();

@@ -185,7 +185,7 @@ def test_point_forces_and_direction_force(page):
 def test_curve_emitter_stroke_fits_beziers(page):
     mount(page)
     tool(page, "emitter-curve")
-    stroke = [(100 + 6 * i, 250 + 80 * math.sin(i / 10)) for i in range(100)]
+    stroke = [(100 + 12 * i, 250 + 80 * math.sin(i / 5)) for i in range(50)]
     drag(page, stroke)
     e = layer(page)["emitter"]
     assert e["kind"] == "curve" and e["mode"] == "free" and e["speed"] == 1.0
@@ -261,7 +261,7 @@ def test_select_moves_a_container_and_deletes_a_force(page):
 def test_select_drags_a_curve_emitter_handle(page):
     mount(page)
     tool(page, "emitter-curve")
-    drag(page, [(100 + 4 * i, 300) for i in range(80)])
+    drag(page, [(100 + 10 * i, 300) for i in range(35)])
     first = layer(page)["emitter"]["points"][0]
     tool(page, "select")
     drag(page, [tuple(first), (first[0], first[1] - 40), (first[0], first[1] - 80)])
@@ -449,6 +449,26 @@ def test_layers_panel_add_rename_block_settings(page):
     assert [l["name"] for l in design(page)["layers"]] == ["ground"]
 
 
+def test_background_and_image_container_are_drawn(page):
+    white = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8DwHwAFBQIAX8jx0gAAAABJRU5ErkJggg=="
+    mount(page)
+    page.evaluate(
+        """(img) => { const d = fake.get('design');
+                   d.background = {image: img};
+                   d.layers[0].container = {kind: 'image', image: img, threshold: 0.5, box: [100, 100, 200, 100], cuts: []};
+                   fake.push('design', JSON.parse(JSON.stringify(d))); }""",
+        white,
+    )
+    bg = page.locator(f"{STAGE} img")
+    bg.wait_for(state="visible")
+    assert bg.get_attribute("src") == white
+    page.wait_for_function(
+        """() => { const c = document.querySelectorAll('[data-role="stage"] canvas')[0], k = c.width / 800;
+                   const alpha = (x, y) => c.getContext('2d').getImageData(x * k, y * k, 1, 1).data[3];
+                   return alpha(200, 150) > 0 && alpha(400, 300) === 0; }"""
+    )
+
+
 def test_python_side_design_change_redraws_and_two_views_agree(page):
     n = mount(page, views=2)
     assert n > 0
@@ -466,3 +486,23 @@ def test_python_side_design_change_redraws_and_two_views_agree(page):
     assert layer(page)["forces"] == []
     # Aborting the views removes every listener they added.
     assert page.evaluate("unitopia.unmount(), fake.listenerCount()") == 0
+
+
+def test_stage_scales_to_fit_a_narrow_cell_at_high_dpi(browser, page_url):
+    context = browser.new_context(viewport={"width": 700, "height": 900}, device_scale_factor=2)
+    context.set_default_timeout(5000)
+    try:
+        pg = context.new_page()
+        pg.goto(page_url)
+        pg.wait_for_function("window.unitopiaReady === true")
+        mount(pg)
+        box = pg.locator(STAGE).bounding_box()
+        assert box["width"] < 700 and box["width"] / box["height"] == pytest.approx(800 / 500, rel=0.01)
+        backing = pg.evaluate("document.querySelector('[data-role=stage] canvas').width")
+        assert backing == round(box["width"] * 2), "drawn at devicePixelRatio"
+        tool(pg, "container-rect")
+        drag(pg, [(100, 100), (300, 300)])
+        c = layer(pg)["container"]
+        assert [c["x"], c["y"], c["w"], c["h"]] == pytest.approx([100, 100, 200, 200], abs=2), "pointer -> canvas px"
+    finally:
+        context.close()

@@ -386,7 +386,7 @@ var ImageCache = class {
 };
 
 // src/bitmaps.js
-var MIN_PX = 32;
+var MIN_PX = 8;
 var MAX_PX = 512;
 var sizeBucket = (px) => Math.min(MAX_PX, Math.max(MIN_PX, 2 ** Math.ceil(Math.log2(Math.max(1, px)))));
 var MarkBitmaps = class {
@@ -1137,6 +1137,7 @@ var RAD = Math.PI / 180;
 function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
   const n = Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4;
   let maxSide = 0;
+  let upright = false;
   for (let i = 0; i < n; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
@@ -1146,17 +1147,27 @@ function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
     if (!(w > 0 && h2 > 0) || !Number.isFinite(x + y)) continue;
     if (w > maxSide) maxSide = w;
     if (h2 > maxSide) maxSide = h2;
-    const a = frame[4 * i + 2] * RAD;
-    const c = Math.cos(a) * k;
-    const sn = Math.sin(a) * k;
-    ctx.setTransform(c, sn, -sn, c, x * k, y * k);
+    const deg = frame[4 * i + 2];
+    let cx = 0;
+    let cy = 0;
+    if (deg === 0) {
+      if (!upright) ctx.setTransform(k, 0, 0, k, 0, 0);
+      upright = true;
+      cx = x;
+      cy = y;
+    } else {
+      const c = Math.cos(deg * RAD) * k;
+      const sn = Math.sin(deg * RAD) * k;
+      ctx.setTransform(c, sn, -sn, c, x * k, y * k);
+      upright = false;
+    }
     const bmp = bitmaps.get(units[4 * i + 1]);
     if (bmp) {
-      ctx.drawImage(bmp, -w / 2, -h2 / 2, w, h2);
+      ctx.drawImage(bmp, cx - w / 2, cy - h2 / 2, w, h2);
     } else {
       ctx.fillStyle = rgba(colors, i);
       ctx.beginPath();
-      ctx.ellipse(0, 0, w / 2, h2 / 2, 0, 0, 2 * Math.PI);
+      ctx.ellipse(cx, cy, w / 2, h2 / 2, 0, 0, 2 * Math.PI);
       ctx.fill();
     }
   }
@@ -1165,7 +1176,6 @@ function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
   return maxSide * k;
 }
 function outlineSelected(ctx, k, units, frame, n, selected) {
-  ctx.lineWidth = 2 / k;
   for (const i of selected) {
     if (i < 0 || i >= n) continue;
     const s = frame[4 * i + 3];
@@ -1722,7 +1732,7 @@ function createLayersPanel(view) {
       name,
       btn("up", "Move up (drawn earlier)", "↑", () => move(i, -1), i === 0),
       btn("down", "Move down (drawn later)", "↓", () => move(i, 1), i === n - 1),
-      btn("duplicate", "Duplicate", "⎘", () => {
+      btn("duplicate", "Duplicate", "⊞", () => {
         view.commit(duplicateLayer(view.design(), i));
         view.setLayer(i + 1);
       }),
@@ -2102,7 +2112,7 @@ function download(root, msg) {
 function renderView({ model, el, signal }) {
   const s = session(model);
   const stage = createStage(signal);
-  const root = h("div", { class: "unitopia", dataset: { unitopia: "", status: "idle", frames: "0" }, tabindex: "0" });
+  const root = h("div", { class: "unitopia", dataset: { unitopia: "", status: "idle", frames: "0", lmSuppressShortcuts: "true" }, tabindex: "0" });
   const stats = { paints: 0, paintMs: 0, framesReceived: 0 };
   root.unitopiaStats = stats;
   const hitCtx = document.createElement("canvas").getContext("2d");
@@ -2236,8 +2246,6 @@ function renderView({ model, el, signal }) {
     bitmaps.update(list(model, "marks"));
     panels[3].update();
     redraw("marks");
-  }, signal);
-  onModel(model, ["change:titles"], () => {
   }, signal);
   onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
   listen(s.bus, "ui", () => {

@@ -36,7 +36,7 @@ export function createLayersPanel(view) {
       name,
       btn("up", "Move up (drawn earlier)", "\u2191", () => move(i, -1), i === 0),
       btn("down", "Move down (drawn later)", "\u2193", () => move(i, 1), i === n - 1),
-      btn("duplicate", "Duplicate", "\u2398", () => {
+      btn("duplicate", "Duplicate", "\u229e", () => {
         view.commit(edit.duplicateLayer(view.design(), i));
         view.setLayer(i + 1);
       }),

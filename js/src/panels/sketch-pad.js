@@ -3,7 +3,7 @@
 import { h } from "../dom.js";
 import { round2, simplify } from "../geometry.js";
 
-export const PAD = 160;
+const PAD = 160;
 
 export function createSketchPad(onUse) {
   const canvas = h("canvas", { class: "ut-pad", width: PAD * 2, height: PAD * 2, dataset: { role: "sketch-pad" } });

@@ -6,7 +6,7 @@ import { setEmitter } from "../design-edit.js";
 import { pathLength } from "../geometry.js";
 import { Stroke } from "./stroke.js";
 
-export const FIT_TOLERANCE = 4; // screen px
+const FIT_TOLERANCE = 4; // screen px
 
 export function emitterCurve(view) {
   let stroke = null;
