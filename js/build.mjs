@@ -5,11 +5,13 @@ import { fileURLToPath } from "node:url";
 import path from "node:path";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
+// UNITOPIA_BUNDLE_DIR builds elsewhere (the staleness test compares that build with the committed one)
+const outdir = process.env.UNITOPIA_BUNDLE_DIR || path.join(here, "..", "unitopia_widget", "static");
 
 await build({
   absWorkingDir: here,
   entryPoints: ["src/index.js"],
-  outfile: "../unitopia_widget/static/widget.js",
+  outfile: path.join(outdir, "widget.js"),
   bundle: true,
   format: "esm",
   target: "es2020",

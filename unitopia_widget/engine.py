@@ -24,7 +24,7 @@ from .solver import Problem, Result, solve
 from .start import orientation_targets, start_positions
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
-MAX_RASTER = 8_000_000    # raster px per layer slab
+MAX_RASTER = 6_000_000    # raster px over all layer slabs together
 DEFAULT_OPEN_FILL = 0.5
 
 
@@ -63,6 +63,8 @@ def bind(df: pd.DataFrame, layers) -> Units:
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
     palettes = {c: palette_for(df[c]) for c in color_cols
                 if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c])}
+    # numeric colours: one scale per column, shared by the layers (as the palettes are)
+    domains = {c: _finite_range(df[c]) for c in color_cols if c not in palettes}
     parts, rows = [], []
     for i, layer in enumerate(layers):
         sub = layer_rows(df, layer)
@@ -71,7 +73,11 @@ def bind(df: pd.DataFrame, layers) -> Units:
         e = layer.encodings
         enc: Encoded = encode(sub, size=e["size"], width=e["width"], height=e["height"],
                               color=e["color"], margin=e["margin"], order=e["order"],
-                              palette=palettes.get(e["color"]))
+                              palette=palettes.get(e["color"]), domain=domains.get(e["color"]))
+        for attr, channel in (("area", "size"), ("width", "width"), ("height", "height")):
+            if e[channel] is not None:   # encode normalises per layer; keep layers comparable
+                column = sub[e[channel]].to_numpy(dtype=float)
+                setattr(enc, attr, getattr(enc, attr) * column.mean() / _positive_mean(df[e[channel]]))
         mark = layer.mark
         # the box whose silhouette has area enc.area: h0 * (aspect * h0) * fill_fraction = area
         h0 = np.sqrt(enc.area / (mark.aspect * mark.fill_fraction))
@@ -83,6 +89,20 @@ def bind(df: pd.DataFrame, layers) -> Units:
                  area=cat(lambda p: p[3].area * p[3].width * p[3].height),
                  margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
                  colors=[c for p in parts for c in p[3].colors])
+
+
+def _positive_mean(series: pd.Series) -> float:
+    """Mean of the finite, positive values of a numeric column (1 if none)."""
+    v = series.to_numpy(dtype=float, na_value=np.nan)
+    v = v[np.isfinite(v) & (v > 0)]
+    return float(v.mean()) if len(v) else 1.0
+
+
+def _finite_range(series: pd.Series):
+    """(min, max) of the finite values of a numeric column, or None."""
+    v = series.to_numpy(dtype=float, na_value=np.nan)
+    v = v[np.isfinite(v)]
+    return (float(v.min()), float(v.max())) if len(v) else None
 
 
 def pick_device(device) -> str:
@@ -118,6 +138,14 @@ def initial_scale(units: Units, layers, canvas) -> tuple[float, bool, list]:
             # start loose: compact marks at 75% coverage, spiky ones (stars) lower
             start = min(max(0.75 * layer.mark.fill_fraction / 0.785, 0.35), 0.75)
             free.append(math.sqrt(start * area / sharing))
+    for i, layer in enumerate(layers):
+        emitter = layer.emitter
+        if getattr(emitter, "mode", None) == "line":
+            # a line holds its marks end to end: at most the curve's length of diameters
+            mine = units.layer == i
+            diameters = 2 * np.sqrt(units.area[mine] / math.pi) * (1 + 2 * units.margin[mine])
+            limit = 0.95 * emitter.curve.length / diameters.sum()
+            (fixed if fixed else free).append(limit)
     if fixed:
         return min(fixed), False, areas
     return min(free), True, areas
@@ -136,15 +164,16 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * scale
     r_mean = float(np.mean(foot))
     w, h = canvas
-    rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h)))
+    rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
     fields = [_fields(_container(layer), grid, r_mean * rho) for layer in layers]
     blocks = torch.zeros(len(layers), len(layers))
     names = [layer.name for layer in layers]
-    for a, layer in enumerate(layers):
-        for b in layer.blocks:
+    for a in order:   # blocking layers first, so their own obstacles are known: blocks chain
+        for b in layers[a].blocks:
             blocks[a, names.index(b)] = 1.0
+            blocks[a] = torch.maximum(blocks[a], blocks[names.index(b)])
     norm = float((units.area * (1 + 2 * units.margin) ** 2).sum()) * (scale * rho) ** 2
     terms = CanvasTerms(
         penalty=torch.stack([f[2] for f in fields]).to(dev),

@@ -109,6 +109,7 @@ def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
     sides = np.asarray(sprite_sides, dtype=float)[sprite_ids]
     # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
     level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
+    level = np.minimum(level, int(np.log2(max(sprite_sides) / 4)))   # the coarsest level is 4 texels
     key = np.stack([sprite_ids, level, ph, pw], axis=1)
     uniq, inverse = np.unique(key, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)

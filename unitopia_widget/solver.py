@@ -149,7 +149,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             polish_left -= 1
             for g, lr0 in zip(optimizer.param_groups, base_lrs):
                 g["lr"] = lr0 * max(polish_left, 1) / p.polish_iterations
-            if polish_left <= 0:
+            if polish_left <= 0 or iteration >= p.max_iterations:   # max_iterations is a cap
                 if (p.free_scale and p.terms.stats["overlap"] > p.final_overlap
                         and rounds < p.legalize_rounds and iteration < p.max_iterations):
                     # still crowded: give up a little scale and settle again
