@@ -85,8 +85,9 @@ def invalid_rows(df: pd.DataFrame, bindings: dict) -> np.ndarray:
 
 
 def encode(df: pd.DataFrame, size=None, width=None, height=None, color=None,
-           margin=0.0, order=None, palette: dict | None = None) -> Encoded:
-    """Encode the rows of ``df``. ``palette`` maps category -> colour (shared by layers)."""
+           margin=0.0, order=None, palette: dict | None = None, domain=None) -> Encoded:
+    """Encode the rows of ``df``. ``palette`` maps category -> colour and ``domain`` is the
+    (min, max) of a numeric colour scale, both shared by layers (default: from ``df``)."""
     n = len(df)
     if size is not None and (width is not None or height is not None):
         raise ValueError(f"size={size!r} cannot be combined with width={width!r} or "
@@ -102,7 +103,7 @@ def encode(df: pd.DataFrame, size=None, width=None, height=None, color=None,
             raise ValueError(f"margin must be a column name or a number >= 0, got {margin!r}")
         margins = np.full(n, m)
     return Encoded(area=area, width=w, height=h, margin=margins,
-                   order=_order(df, order), colors=_colors(df, color, palette))
+                   order=_order(df, order), colors=_colors(df, color, palette, domain))
 
 
 def _factor(df, channel, column, n) -> np.ndarray:
@@ -134,7 +135,7 @@ def palette_for(values) -> dict:
     return {v: CATEGORICAL[i % len(CATEGORICAL)] for i, v in enumerate(uniq)}
 
 
-def _colors(df, color, palette) -> list[str]:
+def _colors(df, color, palette, domain=None) -> list[str]:
     n = len(df)
     if color is None:
         return [DEFAULT_COLOR] * n
@@ -148,15 +149,16 @@ def _colors(df, color, palette) -> list[str]:
                          + ", ".join(repr(c) for c in df.columns))
     series = df[color]
     if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
-        return sequential(series.to_numpy(dtype=float, na_value=np.nan))
+        return sequential(series.to_numpy(dtype=float, na_value=np.nan), domain)
     palette = palette if palette is not None else palette_for(series)
     return [palette.get(v, DEFAULT_COLOR) for v in series]
 
 
-def sequential(values: np.ndarray) -> list[str]:
-    """Hex colours of a light-to-dark sequential scale over ``values``; NaN is grey."""
+def sequential(values: np.ndarray, domain=None) -> list[str]:
+    """Hex colours of a light-to-dark sequential scale over ``domain`` (min, max; default the
+    range of ``values``); NaN is grey."""
     stops = np.array([ImageColor.getrgb(c) for c in SEQUENTIAL], dtype=float)
-    lo, hi = np.nanmin(values), np.nanmax(values)
+    lo, hi = domain if domain is not None else (np.nanmin(values), np.nanmax(values))
     t = np.zeros_like(values) if hi <= lo else (values - lo) / (hi - lo)
     out = []
     for v in t:
