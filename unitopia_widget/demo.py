@@ -1,8 +1,12 @@
 """The built-in example: stars settling in a jar, one star per task, area = duration."""
 from __future__ import annotations
 
+import io
+
 import numpy as np
 import pandas as pd
+import resvg_py
+from PIL import Image
 
 from .chart import Chart
 from .containers import Container
@@ -21,8 +25,19 @@ def demo_data(n: int = 120, seed: int = 7) -> pd.DataFrame:
     return pd.DataFrame({"Task": task, "Duration": duration})
 
 
+def jar_picture() -> Image.Image:
+    """The jar drawn as a background picture, 800 x 500."""
+    svg = (f'<svg xmlns="http://www.w3.org/2000/svg" width="800" height="500">'
+           f'<rect width="800" height="500" fill="#fbf8f1"/>'
+           f'<path d="{JAR}" fill="#eef4f7" stroke="#5b6b75" stroke-width="5" '
+           f'stroke-linejoin="round"/></svg>')
+    return Image.open(io.BytesIO(bytes(resvg_py.svg_to_bytes(svg_string=svg)))).convert("RGBA")
+
+
 def demo_chart(seed: int = 0, chart_cls=Chart, **kwargs):
-    """Stars in a jar: a jar-shaped path container, a point force at its bottom."""
+    """Stars settling in a jar: a jar-shaped path container, a point force at its
+    bottom, an open boundary (the stars fill half the jar), the jar as background."""
     return chart_cls(demo_data(), mark="star", size="Duration", color="Task",
                      container=Container.path(JAR), forces=[PointForce(400, 470)],
+                     boundary="open", fill=0.45, background=jar_picture(),
                      canvas=(800, 500), seed=seed, **kwargs)
