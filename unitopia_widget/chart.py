@@ -8,22 +8,27 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import tempfile
 import warnings
+from numbers import Integral
 
+import numpy as np
 import pandas as pd
 
 from . import engine
-from .encodings import invalid_rows, titles as row_titles
+from .encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
 from .export import to_png, to_svg
 from .images import image_data_url, load_image
-from .scene import SCHEMA, VERSION, Layer, block_order, check_design_header
+from .scene import SCHEMA, VERSION, Layer, _mark, block_order, check_design_header
 from .validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
              "background", "seed", "device", "iterations", "dropna")
 MAX_UNITS = 20_000
+MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
+_XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def check_kwargs(owner: str, kwargs: dict, allowed) -> None:
@@ -51,18 +56,29 @@ class Chart:
         opts = dict(kwargs)
         self.canvas = _canvas(opts.pop("canvas", (800, 500)))
         self.background = _background(opts.pop("background", None))
-        self.seed = int(opts.pop("seed", 0))
+        self.seed = _seed(opts.pop("seed", 0))
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
         mark = opts.pop("mark", "circle")
+        if not _is_category_dict(mark):
+            mark = _mark(mark)   # one Mark for every layer: its renders are cached once
+        if by is not None:
+            engine.check_column(df, "by", by)
+        missing_by = df[by].isna().to_numpy() if by is not None else np.zeros(len(df), bool)
         if opts.pop("dropna", False):
-            bad = invalid_rows(df, opts)
+            bad = invalid_rows(df, opts) | missing_by
             if bad.any():
+                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS if isinstance(opts.get(c), str)]
+                bound += [f"by={by!r}"] if missing_by.any() else []
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
-                              f"bound values are missing, infinite or out of range", stacklevel=3)
+                              f"values are missing, infinite or out of range in "
+                              f"{', '.join(bound)}", stacklevel=3)
                 df = df[~bad]
                 if len(df) == 0:
                     raise ValueError("dropna=True dropped every row")
+        elif missing_by.any():
+            raise ValueError(f"by={by!r}: {int(missing_by.sum())} of {len(df)} rows are missing; "
+                             f"fill them (df[{by!r}].fillna(...)) or pass dropna=True to drop them")
         self.df = df
         self.layers: list[Layer] = []
         self.placements: pd.DataFrame | None = None
@@ -71,16 +87,21 @@ class Chart:
         if by is None:
             self.add_layer("layer-1", mark=_pick_mark(mark, None), **opts)
         else:
-            if by not in df.columns:
-                engine.check_column(df, "by", by)
-            values = pd.unique(df[by])
+            try:
+                values = pd.unique(df[by])
+            except TypeError:
+                raise TypeError(f"by={by!r}: the column's values must be hashable categories "
+                                f"(str, number, ...), got {type(df[by].iloc[0]).__name__}") from None
+            if len(values) > MAX_LAYERS:
+                raise ValueError(f"by={by!r} has {len(values)} distinct values, one layer each; at "
+                                 f"most {MAX_LAYERS} layers are supported: group or bin the column "
+                                 f"first, or use color={by!r} instead")
             try:
                 values = sorted(values)
             except TypeError:
                 pass
             for v in values:
-                self.add_layer(str(v), mark=_pick_mark(mark, v), rows={"column": by, "value": v},
-                               **opts)
+                self.add_layer(str(v), mark=_pick_mark(mark, v), rows=_rows_of(df, by, v), **opts)
         self.bind_check()
 
     # --- layers -------------------------------------------------------------
@@ -95,6 +116,11 @@ class Chart:
             rows = {"index": data.index.tolist()}
         layer = Layer(name, rows=rows, on_change=self._layer_changed, **fields)
         self.layers.append(layer)
+        try:
+            self._recheck()
+        except Exception:
+            self.layers.remove(layer)
+            raise
         self._changed()
         return layer
 
@@ -116,6 +142,7 @@ class Chart:
         if len(self.layers) == 1:
             raise ValueError("a chart keeps at least one layer")
         self.layers.remove(layer)
+        self._recheck()
         self._changed()
 
     def move_layer(self, name, position: int) -> None:
@@ -123,6 +150,7 @@ class Chart:
         layer = self.layer(name)
         self.layers.remove(layer)
         self.layers.insert(position, layer)
+        self._recheck()
         self._changed()
 
     def _layer_changed(self, layer, keys) -> None:
@@ -130,19 +158,37 @@ class Chart:
             names = [x.name for x in self.layers]
             if names.count(layer.name) > 1:
                 raise ValueError(f"a layer named {layer.name!r} exists already")
+        self._recheck()   # raising here makes Layer.set undo the change
         self._changed()
+
+    def _recheck(self) -> None:
+        """After construction, re-bind on every design change: bad bindings fail at once."""
+        if self._units is not None:
+            self.bind_check()
 
     def _changed(self) -> None:
         """Called after every design change; the widget overrides it to sync."""
 
     def bind_check(self) -> None:
         """Encode every layer now, so bad bindings fail at binding time."""
-        block_order(self.layers)
-        units = engine.bind(self.df, self.layers)
+        self._units = self._check(self.layers, self.canvas)
+
+    def _check(self, layers, canvas):
+        """The units of ``layers``, or a ValueError for whatever the layout would fail on."""
+        if len(layers) > MAX_LAYERS:
+            raise ValueError(f"{len(layers)} layers is more than this widget lays out "
+                             f"({MAX_LAYERS}); merge some layers")
+        block_order(layers)
+        units = engine.bind(self.df, layers)
         if len(units.rows) > MAX_UNITS:
             raise ValueError(f"{len(units.rows)} units is more than this widget lays out "
                              f"({MAX_UNITS}); sample or aggregate the rows first")
-        self._units = units
+        for layer in layers:
+            if layer.container is not None and not layer.container.area(canvas) > 0:
+                raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} has no "
+                                 f"area inside the {canvas[0]:g} x {canvas[1]:g} canvas; move it "
+                                 f"onto the canvas")
+        return units
 
     # --- layout -------------------------------------------------------------
     def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3):
@@ -152,19 +198,26 @@ class Chart:
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
             on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every)
         self._units, self.result, self.placements = units, result, table
+        self._placed = units   # the units of the placements, kept when the design changes
         return table
 
-    def titles(self) -> list[str]:
+    def titles(self, units=None) -> list[str]:
         """Tooltip text per unit, in unit order."""
-        units = self._units
+        units = self._units if units is None else units
         return row_titles(self.df.loc[units.rows])
 
     def to_svg(self) -> str:
         """The laid-out chart as SVG text (run the layout first)."""
         if self.placements is None:
             raise RuntimeError("no layout yet: call run() (or run(wait=True)) first")
-        return to_svg(self.canvas, self.placements, self.layers, self._units.colors,
-                      self.titles(), self.background)
+        gone = sorted(set(self.placements["layer"]) - {layer.name for layer in self.layers})
+        if gone:
+            raise RuntimeError(f"the layout is out of date: layer(s) {gone} were renamed or "
+                               f"removed since it was made; run the layout again")
+        units = self._placed
+        svg = to_svg(self.canvas, self.placements, self.layers, units.colors,
+                     self.titles(units), self.background)
+        return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
     def save(self, path) -> None:
         """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design)."""
@@ -189,19 +242,34 @@ class Chart:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
         canvas = _canvas(d.get("canvas", self.canvas))
+        seed = _seed(d.get("seed", self.seed))
         background = d.get("background")
-        layers = [Layer.from_json(x) for x in d["layers"]]
+        if background and not (isinstance(background, dict) and isinstance(background.get("image"), str)
+                               and background["image"].lstrip()[:5].lower() == "data:"):
+            raise ValueError(f"design: background must be null or {{\"image\": \"data:image/png;"
+                             f"base64,...\"}}; got {background!r:.60}")
+        background = _background(background["image"]) if background else None
+        if len(d["layers"]) > MAX_LAYERS:
+            raise ValueError(f"design: {len(d['layers'])} layers, more than the {MAX_LAYERS} "
+                             f"this widget lays out")
+        layers = []
+        for i, x in enumerate(d["layers"]):
+            try:
+                layers.append(Layer.from_json(x))
+            except (ValueError, TypeError, KeyError, AttributeError, IndexError) as exc:
+                text = str(exc) if isinstance(exc, (ValueError, TypeError)) else repr(exc)
+                if not text.startswith("design layer"):
+                    name = x.get("name", "?") if isinstance(x, dict) else "?"
+                    text = f"design layer {i} ({name!r}): {text}"
+                raise ValueError(text) from None
         names = [layer.name for layer in layers]
         if len(set(names)) != len(names):
             raise ValueError(f"design: layer names must be unique, got {names}")
-        block_order(layers)
-        engine.bind(self.df, layers)
+        units = self._check(layers, canvas)
         for layer in layers:
             layer._on_change = self._layer_changed
-        self.canvas, self.layers = canvas, layers
-        self.background = _background(background["image"]) if background else None
-        self.seed = int(d.get("seed", self.seed))
-        self.bind_check()
+        self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
+        self._units = units
         self._changed()
 
 
@@ -210,7 +278,7 @@ def load_design(path) -> dict:
     try:
         with open(path, encoding="utf-8") as f:
             d = json.load(f)
-    except json.JSONDecodeError as e:
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
         raise ValueError(f"design file {os.fspath(path)!r} is not valid JSON: {e}") from None
     check_design_header(d)
     return d
@@ -229,8 +297,29 @@ def _atomic_write(path: str, data: bytes) -> None:
         raise
 
 
+def _is_category_dict(mark) -> bool:
+    """True for ``{category: mark spec}``, False for a mark dict such as ``{"kind": "shape", ...}``."""
+    return isinstance(mark, dict) and not ("kind" in mark and isinstance(mark.get("kind"), str))
+
+
+def _rows_of(df: pd.DataFrame, by, value) -> dict:
+    """The rows spec of the layer of ``df[by] == value``, JSON-safe for the design file:
+    the value as a plain str/int/float/bool when that selects the same rows, else the index."""
+    mask = (df[by] == value).to_numpy()
+    plain = value.item() if isinstance(value, np.generic) else value
+    if isinstance(plain, (str, int, float, bool)) and np.array_equal((df[by] == plain).to_numpy(), mask):
+        return {"column": by, "value": plain}
+    return {"index": df.index[mask].tolist()}
+
+
+def _seed(seed) -> int:
+    if isinstance(seed, bool) or not isinstance(seed, Integral):
+        raise TypeError(f"seed must be an integer, got {seed!r}")
+    return int(seed)
+
+
 def _pick_mark(mark, value):
-    if isinstance(mark, dict) and not ("kind" in mark and isinstance(mark.get("kind"), str)):
+    if _is_category_dict(mark):
         if value is None:
             raise ValueError("mark is a dict of category -> mark, which needs by=<column>")
         if value not in mark and str(value) not in mark:
@@ -252,4 +341,7 @@ def _canvas(canvas) -> tuple[float, float]:
 def _background(source):
     if source is None:
         return None
-    return image_data_url(load_image(source))
+    try:
+        return image_data_url(load_image(source))
+    except ValueError as exc:
+        raise ValueError(f"background: {exc}") from None

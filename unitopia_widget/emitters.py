@@ -31,8 +31,9 @@ def _direction(owner: str, direction, named=("along", "normal")):
         return direction
     if isinstance(direction, Real) and not isinstance(direction, bool):
         return check_finite(owner, "direction", direction)
-    raise ValueError(f"{owner}: direction must be " + ", ".join(repr(n) for n in named)
-                     + f", a number of degrees or None; got {direction!r}")
+    raise ValueError(f"{owner}: direction must be "
+                     + ", ".join([*(repr(n) for n in named), "a number of degrees"])
+                     + f" or None; got {direction!r}")
 
 
 class GridEmitter:

@@ -19,7 +19,7 @@ class Placement:
     """Free translations (masked by ``movable``) and optionally free angles."""
 
     def __init__(self, center: np.ndarray, angle: np.ndarray, movable: np.ndarray,
-                 turnable: np.ndarray, device, orientation=None, orientation_weight: float = 0.05,
+                 turnable: np.ndarray, device, orientation=None, orientation_weight: float = 2.0,
                  tracks=(), drift: np.ndarray | None = None):
         """``center (N, 2)``, ``angle (N,)`` radians, ``movable``/``turnable`` bool ``(N,)``.
 

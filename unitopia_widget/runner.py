@@ -19,6 +19,7 @@ class Runner:
         self._thread: threading.Thread | None = None
         self._cancel = threading.Event()
         self._lock = threading.Lock()
+        self._starting = threading.Lock()   # concurrent start() calls (front-end messages) queue up
         self.generation = 0
         self.error: BaseException | None = None
 
@@ -32,6 +33,10 @@ class Runner:
         ``on_done(result)`` or ``on_error(exc)`` is called from the thread, only
         for the newest run.
         """
+        with self._starting:
+            self._start(job, on_frame, on_done, on_error)
+
+    def _start(self, job, on_frame, on_done, on_error) -> None:
         self.stop()
         with self._lock:
             self.generation += 1
@@ -39,13 +44,16 @@ class Runner:
             cancel = self._cancel = threading.Event()
             self.error = None
         last = [0.0]
+        held = [None]   # the newest frame the throttle held back
 
         def throttled(frame, final: bool = False):
             now = time.monotonic()
             if final or now - last[0] >= self.min_interval:
-                last[0] = now
+                last[0], held[0] = now, None
                 if generation == self.generation:
                     on_frame(frame)
+            else:
+                held[0] = frame
 
         def work():
             try:
@@ -56,6 +64,8 @@ class Runner:
                     on_error(exc)
                 return
             if generation == self.generation:
+                if held[0] is not None:   # the last frame always arrives: it is the layout
+                    on_frame(held[0])
                 on_done(result)
 
         self._thread = threading.Thread(target=work, name="unitopia-layout", daemon=True)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from numbers import Real
 
+import numpy as np
+
 from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .forces import DirectionalForce, PointForce, force_from_json
@@ -34,8 +36,8 @@ class Layer:
                  forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
                  blocks=(), iterations=600, on_change=None, **encodings):
         self._on_change = None
-        self.name, self.rows = str(name), rows
-        self.mark = Mark.from_spec("circle" if mark is None else mark)
+        self.name, self.rows = str(name), _rows(rows)
+        self.mark = _mark("circle" if mark is None else mark)
         self.encodings = {c: None for c in CHANNELS}
         self.encodings["margin"] = 0.0
         self.container = self.emitter = None
@@ -54,14 +56,22 @@ class Layer:
                 raise TypeError(f"Layer.set: unknown field {key!r}{closest(key, LAYER_FIELDS)}; "
                                 f"valid fields: {', '.join(LAYER_FIELDS)}")
         checked = {k: _CHECKS[k](v) for k, v in fields.items()}
-        for key, value in checked.items():
+        old = {k: self.encodings[k] if k in CHANNELS else getattr(self, k) for k in checked}
+        self._apply(checked)
+        if self._on_change is not None:
+            try:   # the owner checks the whole chart (columns, block cycles, unique names)
+                self._on_change(self, set(checked))
+            except Exception:
+                self._apply(old)   # a refused change leaves the layer as it was
+                raise
+        return self
+
+    def _apply(self, values: dict) -> None:
+        for key, value in values.items():
             if key in CHANNELS:
                 self.encodings[key] = value
             else:
                 setattr(self, key, value)
-        if self._on_change is not None:
-            self._on_change(self, set(checked))
-        return self
 
     def to_json(self) -> dict:
         return {
@@ -76,11 +86,24 @@ class Layer:
 
     @classmethod
     def from_json(cls, d: dict, on_change=None) -> "Layer":
+        """A layer from its design dict; ValueError for a malformed one. A design is
+        self-contained: images are data: URLs and SVG marks are inline text, never paths."""
+        if not isinstance(d, dict):
+            raise ValueError(f"design layer must be a JSON object, got {type(d).__name__}")
+        who = f"design layer {d.get('name', '?')!r}"
+        missing = [k for k in ("name", "mark") if k not in d]
+        if missing:
+            raise ValueError(f"{who}: missing {' and '.join(map(repr, missing))}")
+        for key, kind in (("encodings", dict), ("forces", list), ("blocks", list)):
+            if d.get(key) is not None and not isinstance(d[key], kind):
+                raise ValueError(f"{who}: {key} must be a JSON {'object' if kind is dict else 'array'}, "
+                                 f"got {type(d[key]).__name__}")
+        _check_inline(who, d)
         enc = {k: v for k, v in (d.get("encodings") or {}).items() if k in CHANNELS}
-        return cls(d["name"], mark=Mark.from_json(d["mark"]), rows=d.get("rows"),
-                   container=None if d.get("container") is None else Container.from_json(d["container"]),
-                   emitter=emitter_from_json(d.get("emitter")),
-                   forces=[force_from_json(f) for f in d.get("forces", [])],
+        return cls(d["name"], mark=_mark(d["mark"], Mark.from_json), rows=d.get("rows"),
+                   container=_container(d.get("container")),
+                   emitter=_emitter(d.get("emitter")),
+                   forces=_forces(d.get("forces") or []),
                    boundary=d.get("boundary", "closed"), fill=d.get("fill"),
                    orientation=d.get("orientation"), rotate=d.get("rotate", False),
                    blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
@@ -93,11 +116,54 @@ class Layer:
                 f"forces={len(self.forces)}, boundary={self.boundary!r})")
 
 
+def _check_inline(who: str, d: dict) -> None:
+    """ValueError unless the layer's mark and image container are inline data (no paths)."""
+    mark, container = d.get("mark"), d.get("container")
+    if isinstance(mark, dict) and mark.get("kind") == "svg" and not (
+            isinstance(mark.get("svg"), str) and mark["svg"].lstrip("\ufeff \t\r\n").startswith("<")):
+        raise ValueError(f"{who}: an svg mark must hold SVG text starting with '<', not a file "
+                         f"path; got {str(mark.get('svg'))[:60]!r}")
+    if isinstance(container, dict) and container.get("kind") == "image" and not (
+            isinstance(container.get("image"), str)
+            and container["image"].lstrip()[:5].lower() == "data:"):
+        raise ValueError(f"{who}: an image container must hold a data:image/png or "
+                         f"data:image/jpeg URL, not a file path; got "
+                         f"{str(container.get('image'))[:60]!r}")
+
+
+def _from_json(what: str, build, d):
+    """``build(d)``, a missing key in ``d`` reported as a ValueError naming ``what``."""
+    try:
+        return build(d)
+    except KeyError as exc:
+        kind = d.get("kind") if isinstance(d, dict) else None
+        raise ValueError(f"{what}: a {kind!r} {what} dict lacks the key {exc}; got "
+                         f"{d!r:.80}") from None
+
+
+def _mark(value, build=Mark.from_spec):
+    """A Mark from any ``mark=`` spec; errors say that the mark is the culprit."""
+    try:
+        return build(value)
+    except ValueError as exc:
+        raise ValueError(f"mark: {exc}") from None
+
+
+def _rows(rows):
+    """None, ``{"column": name, "value": v}`` or ``{"index": [labels]}``."""
+    if rows is None or (isinstance(rows, dict) and (
+            set(rows) == {"column", "value"} or (set(rows) == {"index"}
+                                                 and isinstance(rows["index"], list)))):
+        return rows
+    raise ValueError(f"layer rows must be None, {{'column': name, 'value': v}} or "
+                     f"{{'index': [labels]}}; got {rows!r:.80}")
+
+
 def _container(value):
     if value is None or isinstance(value, Container):
         return value
     if isinstance(value, dict):
-        return Container.from_json(value)
+        return _from_json("container", Container.from_json, value)
     raise TypeError(f"container must be a uw.Container (rect, ellipse, polygon, path, image, "
                     f"canvas) or None, got {type(value).__name__}")
 
@@ -106,14 +172,14 @@ def _emitter(value):
     if value is None or isinstance(value, (GridEmitter, CurveEmitter)):
         return value
     if isinstance(value, dict):
-        return emitter_from_json(value)
+        return _from_json("emitter", emitter_from_json, value)
     raise TypeError(f"emitter must be uw.GridEmitter(...), uw.CurveEmitter(...) or None, "
                     f"got {type(value).__name__}")
 
 
 def _forces(value):
     items = [value] if isinstance(value, (PointForce, DirectionalForce, dict)) else list(value or [])
-    out = [force_from_json(f) if isinstance(f, dict) else f for f in items]
+    out = [_from_json("force", force_from_json, f) if isinstance(f, dict) else f for f in items]
     for f in out:
         if not isinstance(f, (PointForce, DirectionalForce)):
             raise TypeError(f"forces must be uw.PointForce or uw.DirectionalForce objects, got {f!r}")
@@ -136,6 +202,12 @@ def _orientation(value):
                      f"of degrees; got {value!r}")
 
 
+def _rotate(value):
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"rotate must be True or False, got {value!r}")
+
+
 def _iterations(value):
     if isinstance(value, bool) or not isinstance(value, int) or not 20 <= value <= 100_000:
         raise ValueError(f"iterations must be an integer between 20 and 100000, got {value!r}")
@@ -156,9 +228,9 @@ def _channel(name):
 
 
 _CHECKS = {
-    "mark": Mark.from_spec, "container": _container, "emitter": _emitter, "forces": _forces,
+    "mark": _mark, "container": _container, "emitter": _emitter, "forces": _forces,
     "boundary": lambda v: check_choice("Layer", "boundary", v, BOUNDARIES),
-    "fill": _fill, "orientation": _orientation, "rotate": bool,
+    "fill": _fill, "orientation": _orientation, "rotate": _rotate,
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
     "iterations": _iterations, "name": str,
     **{c: _channel(c) for c in CHANNELS},
@@ -204,7 +276,7 @@ def check_design_header(d) -> None:
         raise ValueError(f"not a unitopia design: expected a JSON object with \"schema\": "
                          f"\"{SCHEMA}\"")
     version = d.get("version")
-    if not isinstance(version, int) or version < 1:
+    if isinstance(version, bool) or not isinstance(version, int) or version < 1:
         raise ValueError(f"design: bad version {version!r}; expected an integer >= 1")
     if version > VERSION:
         raise ValueError(f"design: version {version} is newer than this unitopia-widget reads "

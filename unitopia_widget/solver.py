@@ -1,12 +1,16 @@
-"""The layout solver: Adam on translations, rotations and one global scale.
+"""The layout solver: Adam on translations and rotations, a controller on the global scale.
 
-Schedule: a *settle* phase (forces at full strength, the scale free to grow on
-closed layers, stops when the loss stops improving) and a *polish* phase
-(scale frozen and shrunk by ``polish_shrink``, forces weakened, small steps)
-that removes the last overlaps. Frames ``(N, 4)`` float32 (x, y, angle in
-degrees, global scale) go to ``on_frame`` every ``frame_every`` iterations;
-``cancel()`` returning True stops the run between iterations and keeps the
-current transforms.
+Schedule: a *settle* phase (forces at full strength; on closed layers the
+scale grows while the measured overlap stays below ``grow_overlap / 2`` and
+gives way above it; ends when the loss stops improving) and a *polish* phase
+(scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
+steps) that removes the last overlaps; if a closed layout still overlaps more
+than ``final_overlap``, the scale gives up a little and polishing repeats.
+The scale is controlled rather than learned because a gradient balance
+between fill and overlap settles at a few percent of overlap with spiky marks.
+Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
+``on_frame`` every ``frame_every`` iterations; ``cancel()`` returning True
+stops the run between iterations and keeps the current transforms.
 """
 from __future__ import annotations
 
@@ -40,7 +44,7 @@ class Problem:
     terms: CanvasTerms             # containment / fill fields per layer, blocks
     forces: list                   # per layer: list of forces
     scale: float                   # initial global scale
-    free_scale: bool               # optimise the scale (some layer has a closed boundary)
+    free_scale: bool               # control the scale (some closed layer fills its container)
     force_scale: list | None = None  # per layer: weight of its forces (None: all 1)
     max_iterations: int = 600
     polish_iterations: int = 60

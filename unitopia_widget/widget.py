@@ -135,7 +135,7 @@ class UnitoPia(anywidget.AnyWidget):
         with self.hold_sync():
             self.status, self.error, self.frame_count = "running", "", 0
             self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None}
-        self._runner.start(self._job, self._on_frame, self._on_done, self._on_error)
+        self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error)
         if wait:
             self._runner.wait()
             return self.placements
@@ -166,6 +166,16 @@ class UnitoPia(anywidget.AnyWidget):
 
     def _on_done(self, table) -> None:
         self.status = "done"
+
+    def _on_run_error(self, exc: BaseException) -> None:
+        """A failed run keeps the previous layout: show it again instead of the run's last frame."""
+        result, units = self._chart.result, self._chart._units
+        keep = result is not None and units is not None and len(result.center) == len(units.rows)
+        frame = (np.column_stack([result.center, result.angle, np.full(len(result.angle), result.scale)])
+                 .astype(np.float32).tobytes() if keep else b"")
+        with self.hold_sync():
+            self.frame = frame
+        self._on_error(exc)
 
     def _on_error(self, exc: BaseException) -> None:
         with self.hold_sync():
