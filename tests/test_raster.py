@@ -150,6 +150,21 @@ def test_render_exact_value_for_a_unit_square_aligned_on_pixels():
     assert float(image[:2 + 7].sum()) == 0.0 and float(image[2 + 13:].sum()) == 0.0
 
 
+def test_a_patch_larger_than_the_raster_stays_on_it():
+    # a 30 px square on a 20 x 16 canvas (raster 24 x 20 with the border); as a rotating mark
+    # its patch (48 px) overhangs the raster on every side: samples off the raster are dropped
+    grid = RasterGrid((20.0, 16.0), 1.0, pad=2)
+    groups = plan_groups(np.array([15.0]), np.array([15.0]), np.array([0]), [SPRITE_SIDE],
+                         np.array([True]), 1.0)
+    assert groups[0][3] > grid.shape[0] and groups[0][4] > grid.shape[1]
+    values, index, _ = render_samples(torch.tensor([[10.0, 8.0]]), torch.zeros(1),
+                                      torch.tensor([15.0]), torch.tensor([15.0]), groups,
+                                      [sprite_pyramid(square_alpha(), "cpu")], grid)
+    assert int(index.min()) >= 0 and int(index.max()) < grid.size
+    image = accumulate(values, index, grid.size)
+    assert torch.allclose(image, torch.ones(grid.size))    # the square covers the whole raster
+
+
 @pytest.mark.parametrize("radius", [6.0, 11.3, 24.7])
 @pytest.mark.parametrize("cx, cy", [(80.0, 70.0), (93.37, 61.81)])
 @pytest.mark.parametrize("rho", [1.0, 2.0])

@@ -153,8 +153,14 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
         alpha = F.grid_sample(sprite, sample_grid, mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
         o = origin.long()
-        flat = ((o[:, 1, None] + torch.arange(ph, device=c.device))[:, :, None] * width
-                + (o[:, 0, None] + torch.arange(pw, device=c.device))[:, None, :])  # (n, ph, pw)
+        rows = o[:, 1, None] + torch.arange(ph, device=c.device)              # (n, ph)
+        cols = o[:, 0, None] + torch.arange(pw, device=c.device)              # (n, pw)
+        if ph > height or pw > width:
+            # a patch larger than the raster overhangs it: drop the samples off the raster
+            on = ((rows >= 0) & (rows < height))[:, :, None] & ((cols >= 0) & (cols < width))[:, None, :]
+            alpha = alpha * on.reshape(1, 1, -1, pw).to(alpha.dtype)
+            rows, cols = rows.clamp(0, height - 1), cols.clamp(0, width - 1)
+        flat = rows[:, :, None] * width + cols[:, None, :]                    # (n, ph, pw)
         values.append(alpha.reshape(-1))
         indices.append(flat.reshape(-1))
         owners.append(idx.repeat_interleave(ph * pw))

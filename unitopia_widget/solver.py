@@ -139,11 +139,13 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.05)
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
             if p.free_scale:
-                # the scale grows while marks have room and gives way when they crowd
-                if overlap < 0.5 * p.grow_overlap:
+                # the scale grows while marks have room and gives way when they crowd (or, when
+                # too few to crowd, as they leave the container)
+                crowd = max(overlap, p.terms.stats["outside"])
+                if crowd < 0.5 * p.grow_overlap:
                     log_scale += p.scale_step
                     since_best = 0
-                elif overlap > 1.5 * p.grow_overlap:
+                elif crowd > 1.5 * p.grow_overlap:
                     log_scale -= p.scale_step
             if since_best >= p.patience or iteration >= p.max_iterations - p.polish_iterations:
                 phase = "polish"

@@ -1,0 +1,211 @@
+"""Tests for unitopia_widget.solver (through the headless Chart): small real layouts."""
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+import torch
+from scipy.spatial import cKDTree
+
+import unitopia_widget as uw
+from unitopia_widget import engine
+from unitopia_widget.solver import Problem, Result, solve
+
+CX, CY, R = 400.0, 250.0, 200.0
+CIRCLE = uw.Container.ellipse(CX, CY, R, R)
+
+
+@pytest.fixture(autouse=True, scope="module")
+def one_thread():
+    # two cores shared with other jobs: PyTorch's second intra-op thread mostly waits (10x slower)
+    before = torch.get_num_threads()
+    torch.set_num_threads(1)
+    yield
+    torch.set_num_threads(before)
+
+
+def lens(d, a, b):
+    """Intersection area of discs of radii a, b whose centres are d apart."""
+    if d >= a + b:
+        return 0.0
+    if d <= abs(a - b):
+        return math.pi * min(a, b) ** 2
+    x1 = max(-1.0, min(1.0, (d * d + a * a - b * b) / (2 * d * a)))
+    x2 = max(-1.0, min(1.0, (d * d + b * b - a * a) / (2 * d * b)))
+    k = 0.5 * math.sqrt(max((-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b), 0.0))
+    return a * a * math.acos(x1) + b * b * math.acos(x2) - k
+
+
+def circle_quality(table, cx=CX, cy=CY, big_r=R):
+    """Exact overlap and outside shares (of the marks' area) of circle marks in a circle."""
+    c = table[["x", "y"]].to_numpy()
+    r = table["width"].to_numpy() / 2
+    np.testing.assert_allclose(table["width"], table["height"], rtol=1e-9)
+    area = float(np.sum(np.pi * r ** 2))
+    overlap = sum(lens(float(np.hypot(*(c[i] - c[j]))), r[i], r[j])
+                  for i, j in cKDTree(c).query_pairs(2 * r.max()))
+    dist = np.hypot(c[:, 0] - cx, c[:, 1] - cy)
+    outside = sum(math.pi * ri ** 2 - lens(di, ri, big_r) for di, ri in zip(dist, r))
+    return overlap / area, outside / area, area / (math.pi * big_r ** 2)
+
+
+def chart(n=40, seed=0, iterations=200, values=None, **kwargs):
+    df = pd.DataFrame({"v": np.ones(n) if values is None else values})
+    opts = dict(mark="circle", size="v", container=CIRCLE, seed=seed, iterations=iterations)
+    opts.update(kwargs)
+    return uw.Chart(df, **opts)
+
+
+# --- quality -------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def closed_layout():
+    c = chart(50, values=np.random.default_rng(1).uniform(1, 5, 50), iterations=200)
+    return c, c.layout()
+
+
+def test_closed_layout_has_no_overlap_and_stays_inside(closed_layout):
+    c, table = closed_layout
+    overlap, outside, density = circle_quality(table)
+    assert overlap < 0.01, overlap
+    assert outside < 0.005, outside
+    assert density > 0.6, density            # a closed boundary fills the container
+    assert c.result.stats["overlap"] < 0.01
+
+
+def test_open_layout_keeps_the_requested_fill_and_no_overlap():
+    c = chart(50, boundary="open", fill=0.3, forces=[uw.PointForce(CX, CY + R)])
+    overlap, outside, density = circle_quality(c.layout())
+    assert overlap < 0.01 and outside < 0.005
+    assert density == pytest.approx(0.3, rel=1e-3)     # open: the scale is fixed by fill
+
+
+def test_placements_table_columns_and_rows(closed_layout):
+    c, table = closed_layout
+    assert list(table.columns) == ["row", "layer", "x", "y", "angle", "sx", "sy", "width", "height"]
+    assert table["row"].tolist() == list(range(50)) and set(table["layer"]) == {"layer-1"}
+    assert table[["x", "y", "angle", "sx", "sy", "width", "height"]].notna().all().all()
+    assert (table["angle"] == 0).all()
+    assert c.result.iterations <= 200 and not c.result.cancelled
+
+
+@pytest.mark.parametrize("n", [1, 2, 5])
+def test_a_few_marks_fill_the_default_canvas_without_error(n):
+    # with too few marks to crowd, the scale must stop growing as they leave the container
+    # (it used to grow until a patch outgrew the raster: IndexError in the loss)
+    c = uw.Chart(pd.DataFrame({"v": np.arange(1.0, n + 1)}), size="v", iterations=100)
+    table = c.layout()
+    assert len(table) == n and c.result.stats["outside"] < 0.03
+    assert (table["width"] < 1.3 * 500).all()
+    assert c.result.stats["fill"] > 0.5
+
+
+# --- forces --------------------------------------------------------------------
+
+def test_a_point_force_pulls_marks_towards_it():
+    target = np.array([CX + 120, CY + 90])
+    free = chart(30, boundary="open", fill=0.25).layout()
+    pulled = chart(30, boundary="open", fill=0.25, forces=[uw.PointForce(*target)]).layout()
+    dist = lambda t: np.hypot(t.x - target[0], t.y - target[1]).mean()  # noqa: E731
+    assert dist(pulled) < 0.75 * dist(free), (dist(pulled), dist(free))
+    assert circle_quality(pulled)[0] < 0.01
+
+
+@pytest.mark.parametrize("angle, axis, sign", [(90, "y", 1), (-90, "y", -1), (0, "x", 1)])
+def test_a_directional_force_moves_the_marks_its_way(angle, axis, sign):
+    free = chart(30, boundary="open", fill=0.3).layout()
+    pushed = chart(30, boundary="open", fill=0.3, forces=[uw.DirectionalForce(angle)]).layout()
+    shift = sign * (pushed[axis].mean() - free[axis].mean())
+    assert shift > 0.2 * R, shift
+    assert circle_quality(pushed)[1] < 0.005          # pressed against the wall, still inside
+
+
+# --- determinism, frames, cancellation -----------------------------------------
+
+def test_same_seed_gives_identical_placements():
+    kw = dict(n=25, boundary="open", fill=0.4, forces=[uw.DirectionalForce(90)], iterations=80)
+    a = chart(seed=3, **kw).layout()
+    b = chart(seed=3, **kw).layout()
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    c = chart(seed=4, **kw).layout()          # another seed may differ; it is valid either way
+    assert circle_quality(c)[1] < 0.01
+
+
+def test_frames_are_float32_n_by_4_and_end_on_the_result():
+    frames = []
+    c = chart(20, boundary="open", fill=0.3, iterations=60)
+    table = c.layout(on_frame=lambda f: frames.append(np.array(f, copy=True)), frame_every=5)
+    assert len(frames) >= 2
+    for f in frames:
+        assert f.dtype == np.float32 and f.shape == (20, 4)
+    last = frames[-1]
+    np.testing.assert_allclose(last[:, 0], table["x"], atol=1e-4)
+    np.testing.assert_allclose(last[:, 1], table["y"], atol=1e-4)
+    np.testing.assert_allclose(last[:, 2], table["angle"], atol=1e-4)
+    assert np.all(last[:, 3] == np.float32(c.result.scale))
+    # every k-th iteration, plus the final frame
+    assert len(frames) == c.result.iterations // 5 + 1
+
+
+def test_frames_show_the_scale_growing_in_a_closed_container():
+    frames = []
+    chart(30, iterations=120).layout(on_frame=frames.append, frame_every=3)
+    assert all(np.all(f[:, 3] == f[0, 3]) for f in frames)      # one global scale per frame
+    scales = np.array([f[0, 3] for f in frames])
+    assert scales.max() > scales[0]                            # the scale is controlled, not fixed
+
+
+@pytest.mark.parametrize("k", [0, 7])
+def test_cancel_after_k_iterations(k):
+    calls, frames = [], []
+
+    def cancel():
+        calls.append(1)
+        return len(calls) > k
+
+    c = chart(30, iterations=300)
+    table = c.layout(on_frame=frames.append, cancel=cancel, frame_every=2)
+    assert c.result.cancelled and c.result.iterations == k
+    assert len(frames) == k // 2 + 1                     # k // 2 during the run, then the final one
+    assert len(table) == 30 and table[["x", "y"]].notna().all().all()
+
+
+def test_progress_reports_every_iteration():
+    seen = []
+    c = chart(20, boundary="open", fill=0.3, iterations=40)
+    c.layout(on_progress=lambda i, loss, stats: seen.append((i, loss, dict(stats))))
+    assert [s[0] for s in seen] == list(range(1, c.result.iterations + 1))
+    assert all(np.isfinite(s[1]) and {"overlap", "outside"} <= set(s[2]) for s in seen)
+
+
+# --- devices -------------------------------------------------------------------
+
+def test_cpu_device_path():
+    c = chart(20, boundary="open", fill=0.3, iterations=40, device="cpu")
+    assert c.device == "cpu"
+    units = engine.bind(c.df, c.layers)
+    problem = engine.build_problem(units, c.layers, c.canvas, 0, "cpu", max_iterations=30)
+    assert isinstance(problem, Problem) and problem.device == "cpu"
+    assert problem.placement.t.device.type == "cpu"
+    result = solve(problem)
+    assert isinstance(result, Result) and result.center.shape == (20, 2)
+    assert result.center.dtype == np.float64 and result.iterations <= 30
+
+
+def test_unknown_device_is_refused():
+    with pytest.raises(ValueError, match=r"device must be None, 'auto', 'cpu' or 'cuda', got 'tpu'"):
+        chart(5, device="tpu")
+
+
+@pytest.mark.skipif(torch.cuda.is_available(), reason="CUDA is available here")
+def test_cuda_request_without_cuda_is_a_clear_error():
+    with pytest.raises(ValueError, match=r"CUDA is not available here"):
+        chart(5, device="cuda")
+
+
+@pytest.mark.skipif(not torch.cuda.is_available(), reason="needs CUDA")
+def test_cuda_layout_matches_the_cpu_quality():
+    c = chart(40, boundary="open", fill=0.3, forces=[uw.PointForce(CX, CY + R)], device="cuda")
+    table = c.layout()
+    overlap, outside, _ = circle_quality(table)
+    assert overlap < 0.01 and outside < 0.005
