@@ -79,9 +79,9 @@ class Curve:
 def fit_bezier(stroke: np.ndarray, tolerance: float = 4.0, max_depth: int = 12) -> np.ndarray:
     """Control points ``(3k + 1, 2)`` of cubic Beziers fitting a stroke ``(m, 2)``.
 
-    Least-squares fit with chord-length parameters; a segment whose worst
-    point is further than ``tolerance`` px is split there (Schneider's method,
-    without the Newton refinement).
+    Least-squares fit from chord-length parameters refined by Newton steps; a
+    segment whose worst point is further than ``tolerance`` px is split there
+    (Schneider's method).
     """
     pts = np.asarray(stroke, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
@@ -97,17 +97,51 @@ def fit_bezier(stroke: np.ndarray, tolerance: float = 4.0, max_depth: int = 12) 
 def _fit(pts: np.ndarray, tol: float, depth: int) -> list[np.ndarray]:
     chord = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
     t = chord / chord[-1]
-    p0, p3 = pts[0], pts[-1]
-    b = np.stack([(1 - t) ** 3, 3 * (1 - t) ** 2 * t, 3 * (1 - t) * t ** 2, t ** 3], axis=1)
-    if len(pts) <= 3:
-        seg = np.stack([p0, p0 + (p3 - p0) / 3, p0 + 2 * (p3 - p0) / 3, p3])
-    else:
-        rhs = pts - np.outer(b[:, 0], p0) - np.outer(b[:, 3], p3)
-        inner, *_ = np.linalg.lstsq(b[:, 1:3], rhs, rcond=None)
-        seg = np.stack([p0, inner[0], inner[1], p3])
-    err = np.linalg.norm(b @ seg - pts, axis=1)
+    seg = _least_squares(pts, t)
+    for _ in range(4):   # Newton steps move each point's parameter to its nearest curve point
+        err = np.linalg.norm(_bezier(seg, t) - pts, axis=1)
+        if err.max() <= tol:
+            break
+        t = _reparameterise(seg, pts, t)
+        seg = _least_squares(pts, t)
+    err = np.linalg.norm(_bezier(seg, t) - pts, axis=1)
     worst = int(np.argmax(err))
     if err[worst] <= tol or depth <= 0 or len(pts) < 4:
         return [seg]
     worst = min(max(worst, 1), len(pts) - 2)
     return _fit(pts[:worst + 1], tol, depth - 1) + _fit(pts[worst:], tol, depth - 1)
+
+
+def _basis(t: np.ndarray) -> np.ndarray:
+    return np.stack([(1 - t) ** 3, 3 * (1 - t) ** 2 * t, 3 * (1 - t) * t ** 2, t ** 3], axis=1)
+
+
+def _bezier(seg: np.ndarray, t: np.ndarray) -> np.ndarray:
+    return _basis(t) @ seg
+
+
+def _least_squares(pts: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The cubic through the stroke's end points fitting ``pts`` at parameters ``t``."""
+    p0, p3 = pts[0], pts[-1]
+    if len(pts) <= 3:
+        return np.stack([p0, p0 + (p3 - p0) / 3, p0 + 2 * (p3 - p0) / 3, p3])
+    b = _basis(t)
+    rhs = pts - np.outer(b[:, 0], p0) - np.outer(b[:, 3], p3)
+    inner, *_ = np.linalg.lstsq(b[:, 1:3], rhs, rcond=None)
+    return np.stack([p0, inner[0], inner[1], p3])
+
+
+def _reparameterise(seg: np.ndarray, pts: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """One Newton-Raphson step on |B(t) - p|^2 for every point; ends stay at 0 and 1."""
+    d1 = 3 * np.diff(seg, axis=0)                      # (3, 2) first-derivative control points
+    d2 = 2 * np.diff(d1, axis=0)                       # (2, 2)
+    u = 1 - t
+    q = _bezier(seg, t) - pts
+    q1 = (u ** 2)[:, None] * d1[0] + (2 * u * t)[:, None] * d1[1] + (t ** 2)[:, None] * d1[2]
+    q2 = u[:, None] * d2[0] + t[:, None] * d2[1]
+    num = (q * q1).sum(1)
+    den = (q1 * q1).sum(1) + (q * q2).sum(1)
+    step = np.where(np.abs(den) > 1e-12, num / np.where(den == 0, 1, den), 0.0)
+    out = np.clip(t - step, 0.0, 1.0)
+    out[0], out[-1] = 0.0, 1.0
+    return np.maximum.accumulate(out)
