@@ -189,14 +189,17 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     pyramids = [[lvl.to(dev) for lvl in sprite_pyramid(layer.mark.silhouette(SPRITE_SIDE), dev)]
                 for layer in layers]
     cap = max_iterations or max(layer.iterations for layer in layers)
+    # layers emitted on top of the layers they block on are poured in turn
+    depth = {}
+    for i in order:
+        emitted = layers[i].emitter is not None
+        depth[i] = max([depth[names.index(b)] + 1 for b in layers[i].blocks], default=0) if emitted else 0
     return Problem(grid=grid, pyramids=pyramids, sprite_sides=[SPRITE_SIDE] * len(layers),
                    sprite=units.layer, layer=units.layer, half_w=units.half_w,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
-                   # a closed layer fills its container: forces only decide where gaps go
-                   force_scale=[0.2 if layer.boundary == "closed" and layer.fill is None else 1.0
-                                for layer in layers],
-                   free_scale=free_scale, max_iterations=cap, device=device)
+                   free_scale=free_scale, max_iterations=cap, device=device,
+                   stage=np.array([depth[i] for i in units.layer]))
 
 
 def _fields(container, grid: RasterGrid, falloff: float):

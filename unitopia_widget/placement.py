@@ -35,9 +35,9 @@ class Placement:
         self.device = torch.device(device)
         self.t = torch.tensor(center, dtype=torch.float32, device=self.device, requires_grad=True)
         self.movable = torch.as_tensor(movable, device=self.device)
-        if not bool(self.movable.all()):
-            keep = self.movable[:, None].to(torch.float32)
-            self.t.register_hook(lambda g: g * keep)
+        # units move when movable and released (layers poured in turn are held back until then)
+        self.keep = self.movable[:, None].to(torch.float32)
+        self.t.register_hook(lambda g: g * self.keep)
         self.turnable = np.asarray(turnable, dtype=bool)
         self.theta = torch.tensor(angle, dtype=torch.float32, device=self.device,
                                   requires_grad=bool(self.turnable.any()))
@@ -47,6 +47,11 @@ class Placement:
         self.orientation = orientation
         self.orientation_weight = orientation_weight
         self._fixed_angle = bool(np.any(np.abs(angle) > 1e-6))
+
+    def hold(self, held: np.ndarray) -> None:
+        """Freeze the translation of the units where ``held (N,)`` is True; release the rest."""
+        free = self.movable & ~torch.as_tensor(held, device=self.device)
+        self.keep = free[:, None].to(torch.float32)
 
     def parameters(self) -> list[torch.Tensor]:
         return [self.t] + [p for track in self.tracks for p in track.parameters()]
@@ -87,7 +92,7 @@ class Placement:
     def project(self, canvas: tuple[float, float], iteration: int) -> None:
         """Apply the decaying drift, keep centres on the canvas and tracks in order."""
         if self.drift is not None:
-            self.t += self.drift * (DRIFT_DECAY ** iteration) * self.movable[:, None]
+            self.t += self.drift * (DRIFT_DECAY ** iteration) * self.keep
         w, h = canvas
         self.t[:, 0].clamp_(0, w)
         self.t[:, 1].clamp_(0, h)

@@ -46,11 +46,14 @@ class Problem:
     scale: float                   # initial global scale
     free_scale: bool               # control the scale (some closed layer fills its container)
     force_scale: list | None = None  # per layer: weight of its forces (None: all 1)
+    stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
+    stage_wait: int = 150          # iterations a stage waits at most for the one before
     max_iterations: int = 600
     polish_iterations: int = 60
     polish_shrink: float = 0.008
     polish_force: float = 0.05     # force weight in the polish phase, relative
-    force_weight: float = 0.005    # force pressure relative to overlap
+    force_weight: float = 0.005    # force pressure relative to overlap, once marks rest
+    force_travel: float = 0.03     # force pressure while marks are still travelling
     lr: float = 0.04               # translation step when marks touch, in mean mark radii
     lr_travel: float = 0.3         # the step while nothing overlaps (marks travelling), mean radii
     overlap_target: float = 0.002  # raster overlap share above which steps shrink
@@ -60,6 +63,7 @@ class Problem:
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
     patience: int = 12
+    settle_motion: float = 0.15    # mean travel over a patience window, in mean radii, below which marks rest
     device: str = "cpu"
 
 
@@ -103,6 +107,11 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     base_lrs = [g["lr"] for g in optimizer.param_groups]
     gain_max = p.lr_travel / p.lr
     gain, rounds = 1.0, 0
+    window_start, travelling, last_overlap = None, True, math.inf
+    stage = np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage)
+    poured, poured_at = 0, 0
+    if stage.max() > 0:
+        place.hold(stage > poured)
     while True:
         if cancel is not None and cancel():
             cancelled = True
@@ -114,7 +123,10 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                              p.sprite_sides, rotating, p.grid.rho)
         values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
         loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
-        weight = p.force_weight * (p.polish_force if phase == "polish" else 1.0)
+        if phase == "polish":
+            weight = p.force_weight * p.polish_force
+        else:   # a strong pull carries marks through jams; a gentle one lets piles settle
+            weight = p.force_travel if travelling else p.force_weight
         for members, fs, k in force_layers:
             loss = loss + k * weight * potential(fs, center[members]).mean() / radius
         loss = loss + place.penalty()
@@ -135,10 +147,12 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             else:
                 since_best += 1
             overlap = p.terms.stats["overlap"]
-            crowded = overlap > p.overlap_target
-            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.05)
+            # crowding that is getting worse (not the emitter's first pile-up resolving)
+            crowded = overlap > p.overlap_target and overlap > last_overlap * 1.001
+            last_overlap = overlap
+            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.1)
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
-            if p.free_scale:
+            if p.free_scale and not travelling:
                 # the scale grows while marks have room and gives way when they crowd (or, when
                 # too few to crowd, as they leave the container)
                 crowd = max(overlap, p.terms.stats["outside"])
@@ -147,7 +161,20 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                     since_best = 0
                 elif crowd > 1.5 * p.grow_overlap:
                     log_scale -= p.scale_step
-            if since_best >= p.patience or iteration >= p.max_iterations - p.polish_iterations:
+            if iteration % p.patience == 0:
+                # settled when the marks stopped travelling over the last window
+                with torch.no_grad():
+                    now = place.transforms()[0].detach().clone()
+                step = (now - window_start).norm(dim=1) if window_start is not None else None
+                pouring = torch.as_tensor(stage == poured, device=now.device)
+                moved = float(step[pouring].mean()) if step is not None else math.inf
+                travelling = moved > p.settle_motion * radius
+                window_start = now
+                if poured < stage.max() and (not travelling or iteration - poured_at >= p.stage_wait):
+                    poured, poured_at, travelling = poured + 1, iteration, True   # pour the next layer
+                    place.hold(stage > poured)
+            if (since_best >= p.patience and not travelling) \
+                    or iteration >= p.max_iterations - p.polish_iterations:
                 phase = "polish"
                 if p.free_scale:
                     log_scale -= p.polish_shrink
