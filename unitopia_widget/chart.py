@@ -28,6 +28,7 @@ ARGUMENTS = ("mark", "size", "width", "height", "color", "by", "margin", "order"
              "background", "seed", "device", "iterations", "dropna")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
+MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
@@ -68,7 +69,8 @@ class Chart:
         if opts.pop("dropna", False):
             bad = invalid_rows(df, opts) | missing_by
             if bad.any():
-                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS if isinstance(opts.get(c), str)]
+                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS
+                         if isinstance(opts.get(c), str) and opts[c] in df.columns]
                 bound += [f"by={by!r}"] if missing_by.any() else []
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
                               f"values are missing, infinite or out of range in "
@@ -183,6 +185,14 @@ class Chart:
         if len(units.rows) > MAX_UNITS:
             raise ValueError(f"{len(units.rows)} units is more than this widget lays out "
                              f"({MAX_UNITS}); sample or aggregate the rows first")
+        for half in (units.half_w, units.half_h):
+            if not (np.isfinite(half).all() and half.min() > 0 and half.max() <= MAX_SPREAD * half.min()):
+                bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
+                                for c in ("size", "width", "height") if layer.encodings[c]})
+                raise ValueError(f"the values bound to {', '.join(bound) or 'the marks'} span too "
+                                 f"wide a range: the largest mark would be more than {MAX_SPREAD:g} "
+                                 f"times the smallest (or overflow); clip, rescale or log-transform "
+                                 f"the column")
         for layer in layers:
             if layer.container is not None and not layer.container.area(canvas) > 0:
                 raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} has no "
@@ -214,7 +224,9 @@ class Chart:
         if gone:
             raise RuntimeError(f"the layout is out of date: layer(s) {gone} were renamed or "
                                f"removed since it was made; run the layout again")
-        units = self._placed
+        units, placed = self._units, self._placed
+        if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
+            units = placed   # the design changed which rows each layer draws: keep the layout's
         svg = to_svg(self.canvas, self.placements, self.layers, units.colors,
                      self.titles(units), self.background)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML

@@ -68,8 +68,9 @@ class Runner:
                     on_frame(held[0])
                 on_done(result)
 
-        self._thread = threading.Thread(target=work, name="unitopia-layout", daemon=True)
-        self._thread.start()
+        thread = threading.Thread(target=work, name="unitopia-layout", daemon=True)
+        thread.start()
+        self._thread = thread   # started first: a concurrent stop() may join it at once
 
     def stop(self) -> None:
         """Cancel the current run (it keeps its last frame) and wait for it to end."""

@@ -216,6 +216,8 @@ def _iterations(value):
 
 def _channel(name):
     def check(value):
+        if name == "margin" and value is None:
+            return 0.0   # no margin (None would reach the encoder as a number)
         if value is None or isinstance(value, str):
             return value
         if name == "margin" and isinstance(value, Real) and not isinstance(value, bool):
