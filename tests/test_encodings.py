@@ -169,8 +169,23 @@ def test_a_column_wins_over_a_css_colour_of_the_same_name():
     assert list(colors.values()) == [CATEGORICAL[0], CATEGORICAL[1], CATEGORICAL[0]]
 
 
-def test_no_colour_binding_uses_the_default(tasks):
-    assert set(colors_of(uw.Chart(tasks)).values()) == {DEFAULT_COLOR}
+def test_no_colour_binding_keeps_the_marks_own_colours(tasks):
+    assert set(colors_of(uw.Chart(tasks)).values()) == {None}
+
+
+def test_an_unbound_colour_leaves_svg_marks_in_their_own_colours():
+    svg = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+           '<circle cx="5" cy="5" r="5" fill="#e0457b"/></svg>')
+    chart = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0]}), mark=svg, size="v", iterations=20)
+    chart.layout()
+    exported = chart.to_svg()
+    assert "#e0457b" in exported and DEFAULT_COLOR not in exported
+
+
+def test_an_unbound_colour_draws_shapes_in_the_default_colour(tasks):
+    chart = uw.Chart(tasks, mark="circle", iterations=20)
+    chart.layout()
+    assert DEFAULT_COLOR in chart.to_svg()
 
 
 # --- order -----------------------------------------------------------------------

@@ -651,3 +651,15 @@ def test_max_units_lay_out_and_export():
     assert len(table) == MAX_UNITS and np.isfinite(table[["x", "y", "width", "height"]]).all().all()
     assert table["x"].between(0, 800).all() and table["y"].between(0, 500).all()
     assert chart.to_svg().count('class="unit"') == MAX_UNITS
+
+
+def test_saved_files_get_ordinary_permissions(tmp_path):
+    import os
+    chart = uw.Chart(pd.DataFrame({"v": [1.0, 2.0]}), mark="circle", size="v", iterations=20)
+    chart.layout()
+    old = os.umask(0o022)
+    try:
+        chart.save(tmp_path / "chart.svg")
+    finally:
+        os.umask(old)
+    assert oct(os.stat(tmp_path / "chart.svg").st_mode & 0o777) == oct(0o644)

@@ -349,3 +349,13 @@ def test_fragment_rejects_bad_ids_and_colours():
         mark.svg_fragment('x" onload="alert(1)', None)
     with pytest.raises(ValueError, match="colour"):
         mark.svg_fragment("ok", "not-a-colour")
+
+
+def test_translucent_paint_occupies_its_whole_footprint():
+    opaque = Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+                      '<circle cx="5" cy="5" r="5" fill="#e0457b"/></svg>')
+    faint = Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+                     '<g opacity="0.4"><circle cx="5" cy="5" r="5" fill="#e0457b" '
+                     'fill-opacity="0.5"/></g></svg>')
+    assert np.allclose(faint.silhouette(64), opaque.silhouette(64), atol=0.02)
+    assert 'opacity="0.4"' in faint.svg_fragment("m0")   # the drawing keeps its translucency

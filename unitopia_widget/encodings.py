@@ -31,7 +31,7 @@ class Encoded:
     height: np.ndarray    # extra y stretch (height encoding), 1 when unbound
     margin: np.ndarray    # gap around each mark, fraction of its size
     order: np.ndarray     # rank in emission order, 0 first
-    colors: list[str]     # CSS hex colour per unit
+    colors: list          # CSS hex colour per unit; None keeps the mark's own colours
 
 
 def is_css_color(value) -> bool:
@@ -137,8 +137,8 @@ def palette_for(values) -> dict:
 
 def _colors(df, color, palette, domain=None) -> list[str]:
     n = len(df)
-    if color is None:
-        return [DEFAULT_COLOR] * n
+    if color is None:   # unbound: every mark keeps its own colours
+        return [None] * n
     if not isinstance(color, str):
         raise TypeError(f"color must be a column name or a CSS colour, got {color!r}")
     if color not in df.columns:
@@ -177,11 +177,11 @@ def _hex(color: str) -> str:
     return "#%02x%02x%02x" % rgb
 
 
-def rgba(colors: list[str]) -> np.ndarray:
-    """uint8 ``(n, 4)`` RGBA of hex colours."""
+def rgba(colors: list) -> np.ndarray:
+    """uint8 ``(n, 4)`` RGBA of hex colours (None, a mark's own colours, as the default)."""
     out = np.full((len(colors), 4), 255, dtype=np.uint8)
     for i, c in enumerate(colors):
-        out[i, :3] = ImageColor.getrgb(c)[:3]
+        out[i, :3] = ImageColor.getrgb(c or DEFAULT_COLOR)[:3]
     return out
 
 

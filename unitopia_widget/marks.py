@@ -339,7 +339,11 @@ class Mark:
         return self._cache["fill"]
 
     def silhouette(self, max_side: int) -> np.ndarray:
-        """float32 ``(h, w)`` alpha in [0, 1] of the box, long side ``max_side`` px.
+        """float32 ``(h, w)`` footprint in [0, 1] of the box, long side ``max_side`` px.
+
+        The footprint is where the mark has ink, whatever its opacity: SVG marks
+        render with every opacity at 1, raster alpha counts double (so a
+        half-transparent pixel is occupied), and edges stay anti-aliased.
 
         The render is cached per ``max_side``; each call returns a fresh copy.
         """
@@ -349,9 +353,9 @@ class Mark:
         if max_side not in self._cache:
             size = _pixel_size(self.aspect, max_side)
             if self._image is not None:
-                alpha = images.resize_alpha(self._image, size)
+                alpha = np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
             else:
-                rgba = svgsafe.render_svg(_document(self._root, self._box), *size)
+                rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
                 alpha = rgba[..., 3].astype(np.float32) / 255.0
             self._cache[max_side] = alpha
         return self._cache[max_side].copy()

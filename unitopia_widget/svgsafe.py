@@ -215,11 +215,16 @@ def sanitize_svg(text: str | bytes, _nested: int = 0) -> str:
     return serialize(parse_svg(text, _nested))
 
 
-def render_svg(root: ET.Element, width: int, height: int) -> np.ndarray:
+OPAQUE_CSS = "* { opacity: 1 !important; fill-opacity: 1 !important; stroke-opacity: 1 !important }"
+
+
+def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) -> np.ndarray:
     """uint8 ``(height, width, 4)`` straight RGBA of a sanitised tree.
 
     The root's own ``width``/``height`` are replaced by the pixel size, so its
     viewBox (or user space) is stretched over exactly ``width x height`` pixels.
+    ``opaque`` renders every element at full opacity: the footprint a mark
+    occupies, however translucent its paint.
     """
     if width < 1 or height < 1 or width * height > MAX_PIXELS:
         raise ValueError(f"render size {width} x {height} is out of range")
@@ -227,7 +232,8 @@ def render_svg(root: ET.Element, width: int, height: int) -> np.ndarray:
                               preserveAspectRatio="none"))
     with tempfile.TemporaryDirectory(prefix="unitopia-svg-") as empty:
         try:
-            png = resvg_py.svg_to_bytes(svg_string=text, resources_dir=empty)
+            png = resvg_py.svg_to_bytes(svg_string=text, resources_dir=empty,
+                                        style_sheet=OPAQUE_CSS if opaque else None)
         except (KeyboardInterrupt, SystemExit):
             raise
         except BaseException as exc:  # resvg panics surface as BaseException

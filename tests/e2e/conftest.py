@@ -26,18 +26,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 STATIC_DIR = ROOT / "unitopia_widget" / "static"
-# Same browser and flags as tests/browser/conftest.py (see /work/shared/TESTING.md).
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+from chromium import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 SERVER_START_TIMEOUT = 60.0
 KERNEL_TIMEOUT = 60_000  # ms: kernel start plus importing torch on a cold cache
 
@@ -160,19 +149,6 @@ def lab_server(tmp_path_factory):
 
 
 # --- the browser -----------------------------------------------------------------------
-
-@pytest.fixture(scope="session")
-def browser():
-    pw = sync_api.sync_playwright().start()
-    try:
-        b = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-    except Exception as exc:  # pragma: no cover - depends on the machine
-        pw.stop()
-        pytest.skip(f"Chromium did not start under Playwright: {exc}")
-    yield b
-    b.close()
-    pw.stop()
-
 
 def notebook_json(cells: list[str]) -> dict:
     """The template notebook: code cells with no outputs and a python3 kernelspec."""
