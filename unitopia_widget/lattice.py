@@ -61,8 +61,8 @@ def fitting_lattice(region: Region, count: int, spacing: float, clearance: float
     pts = hex_points(region.bbox, spacing)
     ok = pts[region.depth_at(pts) > 0]
     if len(ok) < count:
-        raise ValueError(f"container: too small to place {count} marks "
-                         f"(its area is {region.area:.1f} px^2)")
+        raise ValueError(f"container: too small to place {count} marks (its area is "
+                         f"{region.area:.1f} px^2 on the raster); use a larger container")
     return ok
 
 

@@ -152,14 +152,14 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             last_overlap = overlap
             gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.1)
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
-            if p.free_scale and not travelling:
+            if p.free_scale:
                 # the scale grows while marks have room and gives way when they crowd (or, when
                 # too few to crowd, as they leave the container)
                 crowd = max(overlap, p.terms.stats["outside"])
                 if crowd < 0.5 * p.grow_overlap:
                     log_scale += p.scale_step
                     since_best = 0
-                elif crowd > 1.5 * p.grow_overlap:
+                elif crowd > 1.5 * p.grow_overlap and not travelling:   # not for transient crowds
                     log_scale -= p.scale_step
             if iteration % p.patience == 0:
                 # settled when the marks stopped travelling over the last window

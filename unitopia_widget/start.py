@@ -59,7 +59,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         container = _container(layer)
         key = repr(container.to_json())
         if key not in regions:
-            regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
+            try:
+                regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
+            except ValueError as exc:
+                raise ValueError(f"layer {layer.name!r}: {exc}") from None
             taken[key] = np.zeros((0, 2))
         region, r = regions[key], radius[idx]
         emitter = layer.emitter
@@ -76,7 +79,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx])
         else:
-            s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
+            try:
+                s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
+            except ValueError as exc:
+                raise ValueError(f"layer {layer.name!r}: {exc}") from None
         taken[key] = np.concatenate([taken[key], s.center[idx]])
         speed = 1.0 if emitter is None else emitter.speed
         s.movable[idx] = speed > 0
