@@ -99,6 +99,7 @@ def main(argv=None) -> None:
     import torch
     print(f"# {platform.processor() or platform.machine()}, {torch.get_num_threads()} torch "
           f"threads, torch {torch.__version__}, python {platform.python_version()}")
+    run(20, False, False)   # warm-up: torch and resvg start-up is not part of a layout
     rows = []
     for spread in ([False] if args.equal_only else [False, True]):
         for n in args.sizes:

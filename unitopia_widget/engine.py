@@ -199,7 +199,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
-                   stage=np.array([depth[i] for i in units.layer]))
+                   stage=np.array([depth[i] for i in units.layer]),
+                   travelling=any(layer.emitter is not None for layer in layers))
 
 
 def _fields(container, grid: RasterGrid, falloff: float):

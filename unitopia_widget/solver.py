@@ -48,6 +48,7 @@ class Problem:
     force_scale: list | None = None  # per layer: weight of its forces (None: all 1)
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
+    travelling: bool = True        # whether marks start away from where they will rest
     max_iterations: int = 600
     polish_iterations: int = 60
     polish_shrink: float = 0.008
@@ -63,7 +64,7 @@ class Problem:
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
     patience: int = 12
-    settle_motion: float = 0.15    # mean travel over a patience window, in mean radii, below which marks rest
+    settle_motion: float = 0.75    # mean travel over a patience window, in mean radii, below which marks rest
     device: str = "cpu"
 
 
@@ -107,7 +108,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     base_lrs = [g["lr"] for g in optimizer.param_groups]
     gain_max = p.lr_travel / p.lr
     gain, rounds = 1.0, 0
-    window_start, travelling, last_overlap = None, True, math.inf
+    # marks placed where the forces pull them start at rest; emitted ones start travelling
+    window_start, travelling, last_overlap = place.transforms()[0].detach().clone(), p.travelling, math.inf
     stage = np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage)
     poured, poured_at = 0, 0
     if stage.max() > 0:
@@ -147,10 +149,11 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             else:
                 since_best += 1
             overlap = p.terms.stats["overlap"]
-            # crowding that is getting worse (not the emitter's first pile-up resolving)
-            crowded = overlap > p.overlap_target and overlap > last_overlap * 1.001
+            # crowding; while marks travel, only crowding that gets worse (an emitter's
+            # first pile-up resolving is no reason to slow down)
+            crowded = overlap > p.overlap_target and (not travelling or overlap > last_overlap * 1.001)
             last_overlap = overlap
-            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * 1.1)
+            gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * (1.1 if travelling else 1.05))
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
             if p.free_scale:
                 # the scale grows while marks have room and gives way when they crowd (or, when
@@ -165,9 +168,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 # settled when the marks stopped travelling over the last window
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
-                step = (now - window_start).norm(dim=1) if window_start is not None else None
                 pouring = torch.as_tensor(stage == poured, device=now.device)
-                moved = float(step[pouring].mean()) if step is not None else math.inf
+                moved = float((now - window_start).norm(dim=1)[pouring].mean())
                 travelling = moved > p.settle_motion * radius
                 window_start = now
                 if poured < stage.max() and (not travelling or iteration - poured_at >= p.stage_wait):
@@ -185,7 +187,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             if polish_left <= 0 or iteration >= p.max_iterations:   # max_iterations is a cap
                 if (p.free_scale and p.terms.stats["overlap"] > p.final_overlap
                         and rounds < p.legalize_rounds and iteration < p.max_iterations):
-                    # still crowded: give up a little scale and settle again
+                    # still crowded: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
                     log_scale -= max(p.legalize_shrink, p.terms.stats["overlap"])
