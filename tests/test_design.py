@@ -340,3 +340,20 @@ def test_a_bad_design_changes_nothing(rich_chart):
     with pytest.raises(ValueError, match=r"layer names must be unique"):
         rich_chart.apply_design(bad)
     assert rich_chart.design() == before
+
+
+def test_layer_finds_a_by_layer_by_its_value_and_others_by_position():
+    df = pd.DataFrame({"Year": [2025, 2026, 2025], "v": [1.0, 2.0, 3.0]})
+    chart = uw.Chart(df, by="Year", size="v")
+    assert chart.layer(2026).name == "2026"
+    assert chart.layer(0).name == "2025"
+    with pytest.raises(KeyError, match="no layer named 7 and no position 7"):
+        chart.layer(7)
+
+
+def test_load_takes_an_explicit_canvas(tmp_path):
+    df = pd.DataFrame({"v": [1.0, 2.0, 3.0]})
+    w = uw.UnitoPia(df, size="v", canvas=(640, 400))
+    w.save(tmp_path / "d.json")
+    again = uw.UnitoPia.load(tmp_path / "d.json", df, canvas=(640, 400))
+    assert again.design["canvas"] == [640, 400]

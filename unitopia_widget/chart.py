@@ -127,13 +127,17 @@ class Chart:
         return layer
 
     def layer(self, name) -> Layer:
-        """The layer called ``name`` (or at position ``name`` when an int)."""
-        if isinstance(name, int):
-            return self.layers[name]
+        """The layer called ``name``; an int that names no layer is a position
+        (so ``layer(2025)`` finds the layer ``by="Year"`` made, and ``layer(0)`` the first)."""
         for layer in self.layers:
             if layer.name == str(name):
                 return layer
         names = [layer.name for layer in self.layers]
+        if isinstance(name, int) and not isinstance(name, bool):
+            if -len(self.layers) <= name < len(self.layers):
+                return self.layers[name]
+            raise KeyError(f"no layer named {name!r} and no position {name} among "
+                           f"{len(self.layers)} layers: {names}")
         raise KeyError(f"no layer {name!r}{closest(str(name), names)}; layers: {names}")
 
     def remove_layer(self, name) -> None:

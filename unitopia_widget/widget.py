@@ -121,7 +121,8 @@ class UnitoPia(anywidget.AnyWidget):
     def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
         """A widget for ``df`` with the design saved at ``path``."""
         design = load_design(path)
-        w = cls(df, canvas=design.get("canvas", (800, 500)), **kwargs)
+        kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
+        w = cls(df, **kwargs)
         w._chart.apply_design(design)
         return w
 
