@@ -5,7 +5,6 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-import torch
 from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
@@ -15,13 +14,7 @@ from unitopia_widget.scene import VERSION, block_order
 ELLIPSE = uw.Container.ellipse(400, 250, 220, 200)
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_thread():
-    # two cores shared with other jobs: PyTorch's second intra-op thread mostly waits
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def ones(n, **cols):

@@ -4,7 +4,6 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-import torch
 from scipy.spatial import cKDTree
 from scipy.stats import spearmanr
 
@@ -18,13 +17,7 @@ S_CURVE = [[100, 400], [250, 100], [550, 450], [700, 150]]
 TWO_SEGMENTS = [[80, 250], [180, 60], [320, 60], [400, 250], [480, 440], [620, 440], [720, 250]]
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_thread():
-    # two cores shared with other jobs: PyTorch's second intra-op thread mostly waits
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def bezier(points, n=20001) -> np.ndarray:

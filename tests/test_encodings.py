@@ -4,7 +4,6 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-import torch
 from PIL import ImageColor
 
 import unitopia_widget as uw
@@ -13,13 +12,7 @@ from unitopia_widget.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, e
                                        palette_for, sequential)
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_thread():
-    # two cores shared with other jobs: PyTorch's second intra-op thread mostly waits
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def luminance(hex_color: str) -> float:

@@ -15,13 +15,7 @@ CX, CY, R = 400.0, 250.0, 200.0
 CIRCLE = uw.Container.ellipse(CX, CY, R, R)
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_thread():
-    # two cores shared with other jobs: PyTorch's second intra-op thread mostly waits (10x slower)
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def lens(d, a, b):

@@ -1224,6 +1224,30 @@ var Stroke = class {
     }
   }
 };
+function strokeTool(view, finish, look) {
+  let stroke = null;
+  return {
+    down(p) {
+      stroke = new Stroke(p, view.unit());
+    },
+    move(p) {
+      if (stroke) stroke.add(p);
+    },
+    up(p) {
+      if (!stroke) return;
+      stroke.add(p);
+      const points = stroke.points;
+      stroke = null;
+      finish(points);
+    },
+    cancel() {
+      stroke = null;
+    },
+    preview(ctx, unit) {
+      if (stroke) stroke.draw(ctx, look(unit));
+    }
+  };
+}
 
 // src/tools/select.js
 var rp = (p) => [round2(p[0]), round2(p[1])];
@@ -1358,29 +1382,15 @@ function nearest(points, p, r) {
 
 // src/tools/container-freehand.js
 function containerFreehand(view) {
-  let stroke = null;
-  return {
-    down(p) {
-      stroke = new Stroke(p, view.unit());
-    },
-    move(p) {
-      if (stroke) stroke.add(p);
-    },
-    up(p) {
-      if (!stroke) return;
-      stroke.add(p);
-      const pts = simplify(stroke.points, 0.75 * view.unit());
-      stroke = null;
+  return strokeTool(
+    view,
+    (stroke) => {
+      const pts = simplify(stroke, 0.75 * view.unit());
       const closed = closeStroke(pts, { snap: 16 * view.unit() });
       if (closed) view.commit(setContainer(view.design(), view.layer(), { kind: "polygon", points: closed.points, cuts: [] }));
     },
-    cancel() {
-      stroke = null;
-    },
-    preview(ctx, unit) {
-      if (stroke) stroke.draw(ctx, { width: 2 * unit, closeHint: true });
-    }
-  };
+    (unit) => ({ width: 2 * unit, closeHint: true })
+  );
 }
 
 // src/tools/container-shape.js
@@ -1434,29 +1444,15 @@ function containerShape(view, kind) {
 
 // src/tools/erase.js
 function erase(view) {
-  let stroke = null;
-  return {
-    down(p) {
-      stroke = new Stroke(p, view.unit());
-    },
-    move(p) {
-      if (stroke) stroke.add(p);
-    },
-    up(p) {
-      if (!stroke) return;
-      stroke.add(p);
-      let pts = simplify(stroke.points, 0.5 * view.unit()).map((q) => [round2(q[0]), round2(q[1])]);
+  return strokeTool(
+    view,
+    (stroke) => {
+      let pts = simplify(stroke, 0.5 * view.unit()).map((q) => [round2(q[0]), round2(q[1])]);
       if (pts.length === 1) pts = [pts[0], pts[0]];
-      stroke = null;
       view.commit(addCut(view.design(), view.layer(), { points: pts, width: view.eraserWidth() }));
     },
-    cancel() {
-      stroke = null;
-    },
-    preview(ctx) {
-      if (stroke) stroke.draw(ctx, { color: "rgba(220, 60, 60, 0.45)", width: view.eraserWidth() });
-    }
-  };
+    () => ({ color: "rgba(220, 60, 60, 0.45)", width: view.eraserWidth() })
+  );
 }
 
 // src/tools/emitter-grid.js
@@ -1476,19 +1472,9 @@ function emitterGrid(view) {
 // src/tools/emitter-curve.js
 var FIT_TOLERANCE = 4;
 function emitterCurve(view) {
-  let stroke = null;
-  return {
-    down(p) {
-      stroke = new Stroke(p, view.unit());
-    },
-    move(p) {
-      if (stroke) stroke.add(p);
-    },
-    up(p) {
-      if (!stroke) return;
-      stroke.add(p);
-      const pts = stroke.points;
-      stroke = null;
+  return strokeTool(
+    view,
+    (pts) => {
       if (pathLength(pts) < 8 * view.unit()) return;
       const points = fitCurve(pts, FIT_TOLERANCE * view.unit());
       if (points.length < 4) return;
@@ -1498,13 +1484,8 @@ function emitterCurve(view) {
       const emitter = { kind: "curve", points, speed: keep.speed ?? 1, direction: keep.direction ?? "along", mode: keep.mode ?? "free" };
       view.commit(setEmitter(design, view.layer(), emitter));
     },
-    cancel() {
-      stroke = null;
-    },
-    preview(ctx, unit) {
-      if (stroke) stroke.draw(ctx, { color: "#f28e2b", width: 3 * unit });
-    }
-  };
+    (unit) => ({ color: "#f28e2b", width: 3 * unit })
+  );
 }
 
 // src/tools/forces.js

@@ -4,24 +4,14 @@
 import { fitCurve } from "../bezier.js";
 import { setEmitter } from "../design-edit.js";
 import { pathLength } from "../geometry.js";
-import { Stroke } from "./stroke.js";
+import { strokeTool } from "./stroke.js";
 
 const FIT_TOLERANCE = 4; // screen px
 
 export function emitterCurve(view) {
-  let stroke = null;
-  return {
-    down(p) {
-      stroke = new Stroke(p, view.unit());
-    },
-    move(p) {
-      if (stroke) stroke.add(p);
-    },
-    up(p) {
-      if (!stroke) return;
-      stroke.add(p);
-      const pts = stroke.points;
-      stroke = null;
+  return strokeTool(
+    view,
+    (pts) => {
       if (pathLength(pts) < 8 * view.unit()) return;
       const points = fitCurve(pts, FIT_TOLERANCE * view.unit());
       if (points.length < 4) return;
@@ -31,11 +21,6 @@ export function emitterCurve(view) {
       const emitter = { kind: "curve", points, speed: keep.speed ?? 1.0, direction: keep.direction ?? "along", mode: keep.mode ?? "free" };
       view.commit(setEmitter(design, view.layer(), emitter));
     },
-    cancel() {
-      stroke = null;
-    },
-    preview(ctx, unit) {
-      if (stroke) stroke.draw(ctx, { color: "#f28e2b", width: 3 * unit });
-    },
-  };
+    (unit) => ({ color: "#f28e2b", width: 3 * unit }),
+  );
 }

@@ -28,3 +28,30 @@ export class Stroke {
     }
   }
 }
+
+// A tool that records one freehand stroke per press: `finish(points)` gets the stroke's
+// points (canvas px) on release; `look(unit)` gives the preview's draw options.
+export function strokeTool(view, finish, look) {
+  let stroke = null;
+  return {
+    down(p) {
+      stroke = new Stroke(p, view.unit());
+    },
+    move(p) {
+      if (stroke) stroke.add(p);
+    },
+    up(p) {
+      if (!stroke) return;
+      stroke.add(p);
+      const points = stroke.points;
+      stroke = null;
+      finish(points);
+    },
+    cancel() {
+      stroke = null;
+    },
+    preview(ctx, unit) {
+      if (stroke) stroke.draw(ctx, look(unit));
+    },
+  };
+}
