@@ -18,7 +18,7 @@ import torch
 from .encodings import Encoded, check_column, encode, palette_for
 from .losses import CanvasTerms
 from .placement import Placement
-from .raster import SPRITE_SIDE, RasterGrid, sprite_pyramid
+from .raster import SPRITE_SIDE, RasterGrid, is_thin, sprite_pyramid
 from .scene import block_order
 from .solver import Problem, Result, solve
 from .start import orientation_targets, start_positions
@@ -186,8 +186,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
-    pyramids = [[lvl.to(dev) for lvl in sprite_pyramid(layer.mark.silhouette(SPRITE_SIDE), dev)]
-                for layer in layers]
+    pyramids = []
+    for layer in layers:
+        alpha = layer.mark.silhouette(SPRITE_SIDE)
+        pyramids.append(sprite_pyramid(alpha, dev, keep_thin=is_thin(alpha)))
     cap = max_iterations or max(layer.iterations for layer in layers)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}

@@ -32,12 +32,16 @@ PATCH_SIDES = (4, 6, 8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48, 56, 64, 80, 96,
 SPRITE_SIDE = 256  # long side of the finest sprite level, texels
 
 
-def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32) -> list[torch.Tensor]:
+def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32,
+                   keep_thin: bool = False) -> list[torch.Tensor]:
     """Box-filtered mip levels of one silhouette.
 
     ``alpha`` is ``(h, w)`` in [0, 1] with long side ``SPRITE_SIDE``. Returns
     tensors ``(1, 1, h_l, w_l)``, finest first, each level half the previous
     (area averaging keeps the rendered area exact), down to a long side of 4.
+    ``keep_thin`` (for marks drawn with thin lines, see ``is_thin``) keeps a
+    line at least one texel wide and opaque on every level, so thin strokes
+    that cross still collide instead of averaging away.
     """
     level = torch.as_tensor(np.ascontiguousarray(alpha), dtype=dtype, device=device)[None, None]
     levels = [level]
@@ -46,7 +50,9 @@ def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32) -> list[torch
         # an exact box filter: F.interpolate(mode="area") overlaps its windows on odd sides,
         # which changed the area of a star's levels by 1 to 16%
         rows, cols = _box_filter(h, max(1, h // 2), level), _box_filter(w, max(1, w // 2), level)
-        level = rows @ level @ cols.T
+        finer, level = level, rows @ level @ cols.T
+        if keep_thin and min(h, w) >= 2:
+            level = torch.maximum(level, F.max_pool2d(finer, 2)[..., :level.shape[-2], :level.shape[-1]])
         levels.append(level)
     return levels
 
@@ -58,6 +64,18 @@ def _box_filter(n_in: int, n_out: int, like: torch.Tensor) -> torch.Tensor:
     j = torch.arange(n_in, dtype=torch.float64)[None]
     overlap = (torch.minimum(edges[1:, None], j + 1) - torch.maximum(edges[:-1, None], j)).clamp_min(0)
     return (overlap / r).to(dtype=like.dtype, device=like.device)
+
+
+def is_thin(alpha: np.ndarray, stroke: float = 0.1) -> bool:
+    """Whether most of a silhouette ``(h, w)`` is lines thinner than ``stroke`` times its
+    long side (a sketch, a line icon): opening by that width removes most of it."""
+    from scipy import ndimage
+
+    ink = alpha >= 0.5
+    r = max(1, int(round(stroke * max(alpha.shape) / 2)))
+    yy, xx = np.mgrid[-r:r + 1, -r:r + 1]
+    opened = ndimage.binary_opening(ink, structure=(xx ** 2 + yy ** 2) <= r * r)
+    return bool(opened.sum() < 0.5 * max(ink.sum(), 1))
 
 
 @dataclass
