@@ -116,21 +116,20 @@ def pick_device(device) -> str:
     return str(device)
 
 
-def initial_scale(units: Units, layers, canvas) -> tuple[float, bool, list]:
-    """The starting global scale, whether it is optimised, and each layer's container area.
+def initial_scale(units: Units, layers, canvas) -> tuple[float, bool]:
+    """The starting global scale and whether it is controlled (free) during the layout.
 
     Open layers (and closed ones with a ``fill``) fix the scale so their marks
     cover ``fill`` of the container; closed layers without one start at 70%
     coverage and let the optimiser grow the scale until the container is full.
     """
-    fixed, free, areas = [], [], []
+    fixed, free = [], []
     for i, layer in enumerate(layers):
-        area = _container(layer).area(canvas)
+        area = layer.region.area(canvas)
         if area <= 0:
             raise ValueError(f"layer {layer.name!r}: its container does not overlap the canvas")
-        areas.append(area)
         sharing = sum(units.area[units.layer == j].sum() for j, other in enumerate(layers)
-                      if _container(other) == _container(layer))
+                      if other.region == layer.region)
         if layer.boundary == "open" or layer.fill is not None:
             fill = layer.fill or DEFAULT_OPEN_FILL
             fixed.append(math.sqrt(fill * area / sharing))
@@ -147,27 +146,22 @@ def initial_scale(units: Units, layers, canvas) -> tuple[float, bool, list]:
             limit = 0.95 * emitter.curve.length / diameters.sum()
             (fixed if fixed else free).append(limit)
     if fixed:
-        return min(fixed), False, areas
-    return min(free), True, areas
-
-
-def _container(layer):
-    from .containers import Container
-    return layer.container if layer.container is not None else Container.canvas()
+        return min(fixed), False
+    return min(free), True
 
 
 def build_problem(units: Units, layers, canvas, seed: int, device: str,
                   max_iterations: int | None = None) -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``."""
     order = block_order(layers)
-    scale, free_scale, _ = initial_scale(units, layers, canvas)
+    scale, free_scale = initial_scale(units, layers, canvas)
     foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * scale
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
-    fields = [_fields(_container(layer), grid, r_mean * rho) for layer in layers]
+    fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
     blocks = torch.zeros(len(layers), len(layers))
     names = [layer.name for layer in layers]
     for a in order:   # blocking layers first, so their own obstacles are known: blocks chain

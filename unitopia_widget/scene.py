@@ -73,6 +73,11 @@ class Layer:
             else:
                 setattr(self, key, value)
 
+    @property
+    def region(self) -> Container:
+        """The container marks are laid out in: the whole canvas when none is set."""
+        return self.container if self.container is not None else Container.canvas()
+
     def to_json(self) -> dict:
         return {
             "name": self.name, "rows": self.rows, "mark": self.mark.to_json(),

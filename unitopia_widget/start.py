@@ -37,11 +37,6 @@ class Start:
         return [CurveTrack(*spec, device=device) for spec in self.track_specs]
 
 
-def _container(layer):
-    from .containers import Container
-    return layer.container if layer.container is not None else Container.canvas()
-
-
 def start_positions(units, layers, order, canvas, scale, grid, generator) -> Start:
     """Place every unit; ``order`` is the block order of the layers."""
     n = len(units.layer)
@@ -56,7 +51,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
         ranks = np.argsort(np.argsort(units.order[idx], kind="stable"), kind="stable")
-        container = _container(layer)
+        container = layer.region
         key = repr(container.to_json())
         if key not in regions:
             try:
@@ -139,7 +134,7 @@ def orientation_targets(units, layers, canvas, device):
         if layer.orientation == "along_emitter" and not isinstance(layer.emitter, CurveEmitter):
             raise ValueError(f"layer {layer.name!r}: orientation='along_emitter' needs a "
                              f"uw.CurveEmitter; this layer has {layer.emitter!r}")
-        centers[i] = torch.tensor(_container(layer).centroid(canvas), dtype=torch.float32)
+        centers[i] = torch.tensor(layer.region.centroid(canvas), dtype=torch.float32)
     to_center = torch.tensor([layers[i].orientation == "to_center" for i in range(len(layers))],
                              device=dev)[layer_t]
     along = torch.tensor([layers[i].orientation == "along_emitter" for i in range(len(layers))],
