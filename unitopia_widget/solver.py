@@ -1,8 +1,10 @@
 """The layout solver: Adam on translations and rotations, a controller on the global scale.
 
-Schedule: a *settle* phase (forces at full strength; on closed layers the
-scale grows while the measured overlap stays below ``grow_overlap / 2`` and
-gives way above it; ends when the loss stops improving) and a *polish* phase
+Schedule: a *settle* phase (a strong pull while marks travel, a gentle one
+once they rest; on closed layers the scale grows while the measured overlap
+stays below ``grow_overlap / 2`` and gives way above it once marks rest;
+layers held back for pouring start moving when the stage before them rests;
+ends when the loss stops improving and the marks rest) and a *polish* phase
 (scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
 steps) that removes the last overlaps; if a closed layout still overlaps more
 than ``final_overlap``, the scale gives up a little and polishing repeats.
@@ -45,7 +47,6 @@ class Problem:
     forces: list                   # per layer: list of forces
     scale: float                   # initial global scale
     free_scale: bool               # control the scale (some closed layer fills its container)
-    force_scale: list | None = None  # per layer: weight of its forces (None: all 1)
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
     travelling: bool = True        # whether marks start away from where they will rest
@@ -98,8 +99,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         params.append({"params": place.angle_params(), "lr": 0.05})
     optimizer = torch.optim.Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
-    force_scale = p.force_scale or [1.0] * len(p.forces)
-    force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs, force_scale[a])
+    force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
                     for a, fs in enumerate(p.forces) if fs]
 
     iteration, best, since_best, phase = 0, math.inf, 0, "settle"
@@ -129,8 +129,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             weight = p.force_weight * p.polish_force
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle
             weight = p.force_travel if travelling else p.force_weight
-        for members, fs, k in force_layers:
-            loss = loss + k * weight * potential(fs, center[members]).mean() / radius
+        for members, fs in force_layers:
+            loss = loss + weight * potential(fs, center[members]).mean() / radius
         loss = loss + place.penalty()
         optimizer.zero_grad(set_to_none=True)
         loss.backward()
