@@ -294,11 +294,11 @@ def test_a_front_end_edit_while_running_does_not_lose_the_design(df):
     w.run()
     poll(lambda: w.frame_count >= 1)
     design = copy.deepcopy(w.design)
-    design["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
+    design["layers"][0]["marks"] = [{"kind": "shape", "name": "star"}]
     w.design = design
     w.stop()
     assert w.error == "" and w.layer(0).mark.kind == "shape"
-    assert w.design["layers"][0]["mark"] == {"kind": "shape", "name": "star"}
+    assert w.design["layers"][0]["marks"] == [{"kind": "shape", "name": "star"}]
     w.run(wait=True)
     assert w.status == "done"
     assert_frame_is_layout(w)

@@ -20,10 +20,11 @@ from . import engine
 from .encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
 from .export import to_png, to_svg
 from .images import image_data_url, load_image
-from .scene import SCHEMA, VERSION, Layer, _mark, block_order, check_design_header
+from .scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
+                    check_design_header, is_category_dict)
 from .validate import check_finite, closest
 
-ARGUMENTS = ("mark", "size", "width", "height", "color", "by", "margin", "order", "container",
+ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
              "background", "seed", "device", "iterations", "dropna")
 MAX_UNITS = 20_000
@@ -60,18 +61,19 @@ class Chart:
         self.seed = _seed(opts.pop("seed", 0))
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
-        mark = opts.pop("mark", "circle")
-        if not _is_category_dict(mark):
-            mark = _mark(mark)   # one Mark for every layer: its renders are cached once
-        if by is not None:
-            engine.check_column(df, "by", by)
-        missing_by = df[by].isna().to_numpy() if by is not None else np.zeros(len(df), bool)
+        mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
+        shape = opts.get("shape")
+        categories = {c: v for c, v in (("by", by), ("shape", shape)) if v is not None}
+        missing_by = np.zeros(len(df), bool)
+        for channel, column in categories.items():
+            engine.check_column(df, channel, column)
+            missing_by |= df[column].isna().to_numpy()
         if opts.pop("dropna", False):
             bad = invalid_rows(df, opts) | missing_by
             if bad.any():
                 bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS
                          if isinstance(opts.get(c), str) and opts[c] in df.columns]
-                bound += [f"by={by!r}"] if missing_by.any() else []
+                bound += [f"{c}={v!r}" for c, v in categories.items() if df[v].isna().any()]
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
                               f"values are missing, infinite or out of range in "
                               f"{', '.join(bound)}", stacklevel=3)
@@ -79,15 +81,17 @@ class Chart:
                 if len(df) == 0:
                     raise ValueError("dropna=True dropped every row")
         elif missing_by.any():
-            raise ValueError(f"by={by!r}: {int(missing_by.sum())} of {len(df)} rows are missing; "
-                             f"fill them (df[{by!r}].fillna(...)) or pass dropna=True to drop them")
+            channel, column = next((c, v) for c, v in categories.items() if df[v].isna().any())
+            raise ValueError(f"{channel}={column!r}: {int(df[column].isna().sum())} of {len(df)} "
+                             f"rows are missing; fill them (df[{column!r}].fillna(...)) or pass "
+                             f"dropna=True to drop them")
         self.df = df
         self.layers: list[Layer] = []
         self.placements: pd.DataFrame | None = None
         self.result = None
         self._units = None
         if by is None:
-            self.add_layer("layer-1", mark=_pick_mark(mark, None), **opts)
+            self.add_layer("layer-1", mark=_pick_mark(mark, None, shape), **opts)
         else:
             try:
                 values = pd.unique(df[by])
@@ -103,7 +107,8 @@ class Chart:
             except TypeError:
                 pass
             for v in values:
-                self.add_layer(str(v), mark=_pick_mark(mark, v), rows=_rows_of(df, by, v), **opts)
+                self.add_layer(str(v), mark=_pick_mark(mark, v, shape), rows=_rows_of(df, by, v),
+                               **opts)
         self.bind_check()
 
     # --- layers -------------------------------------------------------------
@@ -228,6 +233,11 @@ class Chart:
         if gone:
             raise RuntimeError(f"the layout is out of date: layer(s) {gone} were renamed or "
                                f"removed since it was made; run the layout again")
+        stale = sorted({name for name, k in zip(self.placements["layer"], self.placements["mark"])
+                        if k >= len(self.layer(name).marks)})
+        if stale:
+            raise RuntimeError(f"the layout is out of date: layer(s) {stale} now draw fewer marks "
+                               f"than when it was made; run the layout again")
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
@@ -320,11 +330,6 @@ def _atomic_write(path: str, data: bytes) -> None:
         raise
 
 
-def _is_category_dict(mark) -> bool:
-    """True for ``{category: mark spec}``, False for a mark dict such as ``{"kind": "shape", ...}``."""
-    return isinstance(mark, dict) and not ("kind" in mark and isinstance(mark.get("kind"), str))
-
-
 def _rows_of(df: pd.DataFrame, by, value) -> dict:
     """The rows spec of the layer of ``df[by] == value``, JSON-safe for the design file:
     the value as a plain str/int/float/bool when that selects the same rows, else the index."""
@@ -341,10 +346,24 @@ def _seed(seed) -> int:
     return int(seed)
 
 
-def _pick_mark(mark, value):
-    if _is_category_dict(mark):
+def _parse_marks(mark):
+    """``mark=`` with every spec made a Mark (the same structure: one, a list or a dict)."""
+    if is_category_dict(mark):
+        return {k: _parse_marks(v) for k, v in mark.items()}
+    if isinstance(mark, (list, tuple)):
+        if len(mark) > MAX_MARKS:
+            _mark_set(mark)   # raises: too many marks
+        return [_parse_marks(m) if isinstance(m, (list, tuple, dict)) else _mark(m) for m in mark]
+    return _mark(mark)
+
+
+def _pick_mark(mark, value, shape):
+    """The ``mark=`` of the layer for by= ``value``: with ``shape=`` every layer takes the
+    whole group; without, a ``{category: mark}`` dict picks the by= category's mark(s)."""
+    if is_category_dict(mark) and shape is None:
         if value is None:
-            raise ValueError("mark is a dict of category -> mark, which needs by=<column>")
+            raise ValueError("mark is a dict of category -> mark, which needs shape=<column> "
+                             "(each row draws the mark of its category) or by=<column>")
         if value not in mark and str(value) not in mark:
             raise ValueError(f"mark: no mark for category {value!r}; the dict has "
                              f"{list(mark)}")

@@ -1,8 +1,8 @@
 """SVG and PNG export of a laid-out chart (DESIGN.md section 2, "SVG export").
 
 Structure: a root ``<svg width=W height=H viewBox="0 0 W H">``; the background,
-if any, as ``<image class="background">``; one definition per (layer mark,
-colour) in ``<defs>``; one ``<g class="unit" data-row data-layer transform>``
+if any, as ``<image class="background">``; one definition per (layer, mark of
+the layer, colour) in ``<defs>``, each mark keeping its own vector design; one ``<g class="unit" data-row data-layer transform>``
 per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
 definition. The unit transform maps the mark's box onto its placement:
 ``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``.
@@ -26,7 +26,8 @@ def _n(v: float) -> str:
 def to_svg(canvas, table, layers, colors, titles, background: str | None = None) -> str:
     """The chart as SVG text.
 
-    ``table``: the placements DataFrame (one row per unit, layer order);
+    ``table``: the placements DataFrame (one row per unit, layer order; its ``mark``
+    column indexes each layer's marks);
     ``colors``: CSS colour per unit; ``titles``: tooltip text per unit;
     ``background``: a PNG data URL or None.
     """
@@ -38,22 +39,23 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None)
                    f'preserveAspectRatio="none" href={quoteattr(background)}/>')
     by_name = {layer.name: (i, layer) for i, layer in enumerate(layers)}
     defs, ids = [], {}
-    for name, color in zip(table["layer"], colors):
-        if (name, color) not in ids:
-            i, layer = by_name[name]
+    keys = list(zip(table["layer"], table["mark"], colors))
+    for key in keys:
+        if key not in ids:
+            i, layer = by_name[key[0]]
             def_id = f"u{i}m{len(ids)}"
-            ids[(name, color)] = def_id
-            defs.append(layer.mark.svg_fragment(def_id, color))
+            ids[key] = def_id
+            defs.append(layer.marks[key[1]].svg_fragment(def_id, key[2]))
     out.append("<defs>" + "".join(defs) + "</defs>")
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
     for k, (row, name) in enumerate(zip(table["row"], table["layer"])):
         x, y, a, sx, sy = cols[k]
-        bw, bh = by_name[name][1].mark.box_size
+        bw, bh = by_name[name][1].marks[keys[k][1]].box_size
         transform = (f"translate({_n(x)} {_n(y)}) rotate({_n(a)}) scale({sx:.6g} {sy:.6g}) "
                      f"translate({_n(-bw / 2)} {_n(-bh / 2)})")
         out.append(f'<g class="unit" data-row={quoteattr(str(row))} data-layer={quoteattr(name)} '
                    f'transform="{transform}"><title>{escape(titles[k])}</title>'
-                   f'<use href="#{ids[(name, colors[k])]}"/></g>')
+                   f'<use href="#{ids[keys[k]]}"/></g>')
     out.append("</svg>")
     return "\n".join(out)
 

@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 import traitlets as t
 
+from . import icons
 from .chart import ARGUMENTS, Chart, check_kwargs, load_design
 from .encodings import rgba
 from .export import to_png
@@ -36,8 +37,10 @@ class _SyncedChart(Chart):
 class UnitoPia(anywidget.AnyWidget):
     """A pictorial unit chart in the notebook: ``UnitoPia(df, mark="star", size="Duration")``.
 
-    Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, SVG path or text,
-    PNG/JPEG path, array, PIL image, ``uw.Mark``; or ``{category: spec}`` with ``by``),
+    Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, an icon name such as
+    ``"fa:apple-whole"``, SVG path or text, PNG/JPEG path, array, PIL image, ``uw.Mark``;
+    a list of those, drawn in turn by the rows; or ``{category: spec}`` with ``shape``
+    or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``color`` (a column or CSS colour), ``by`` (one layer per value),
     ``margin`` (fraction of the mark's size, or a column), ``order`` (emission
@@ -52,7 +55,7 @@ class UnitoPia(anywidget.AnyWidget):
     _css = STATIC / "widget.css"
 
     design = t.Dict().tag(sync=True)                   #: the design JSON (docs/protocol.md)
-    marks = t.List(t.Dict()).tag(sync=True)            #: one image per (layer mark, colour)
+    marks = t.List(t.Dict()).tag(sync=True)            #: one image per (layer, mark, colour)
     fields = t.List(t.Dict()).tag(sync=True)           #: [{"name", "type"}] of the DataFrame
     units = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): layer, mark, base w, base h
     colors = t.Bytes(b"").tag(sync=True)               #: uint8 (N, 4) RGBA
@@ -200,13 +203,13 @@ class UnitoPia(anywidget.AnyWidget):
             return
         layers = self._chart.layers
         keys, marks, index = {}, [], np.zeros(len(units.rows), dtype=np.float32)
-        for k, (li, color) in enumerate(zip(units.layer, units.colors)):
-            key = (int(li), color)
+        for k, (li, mi, color) in enumerate(zip(units.layer, units.mark, units.colors)):
+            key = (int(li), int(mi), color)
             if key not in keys:
                 keys[key] = len(marks)
-                mark = layers[li].mark
+                mark = layers[li].marks[mi]
                 svg = mark.to_svg(color, max_side=128)
-                marks.append({"layer": layers[li].name, "aspect": mark.aspect,
+                marks.append({"layer": layers[li].name, "mark": int(mi), "aspect": mark.aspect,
                               "src": "data:image/svg+xml;base64," + base64.b64encode(svg.encode()).decode()})
             index[k] = keys[key]
         table = np.stack([units.layer.astype(np.float32), index,
@@ -237,6 +240,8 @@ class UnitoPia(anywidget.AnyWidget):
             threading.Thread(target=self._safe(self.stop), daemon=True).start()
         elif kind == "export":
             self._safe(lambda: self._export(msg.get("format")))()
+        elif kind == "icons":
+            self._safe(lambda: self._icons(msg.get("query")))()
 
     def _safe(self, fn):
         def call():
@@ -245,6 +250,11 @@ class UnitoPia(anywidget.AnyWidget):
             except Exception as exc:
                 self._on_error(exc)
         return call
+
+    def _icons(self, query) -> None:
+        """Reply to the mark panel's icon search with up to 30 closest icon names."""
+        query = query if isinstance(query, str) else ""
+        self.send({"type": "icons", "query": query, "names": icons.search(query[:100])})
 
     def _export(self, fmt: str) -> None:
         svg = self._chart.to_svg()
