@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 import torch
 
+from .atlas import SpriteAtlas
 from .encodings import Encoded, check_column, encode, palette_for
 from .groups import mark_choice
 from .losses import CanvasTerms
@@ -216,7 +217,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     for i in order:
         emitted = layers[i].emitter is not None
         depth[i] = max([depth[names.index(b)] + 1 for b in layers[i].blocks], default=0) if emitted else 0
-    return Problem(grid=grid, pyramids=pyramids, sprite_sides=[SPRITE_SIDE] * len(pyramids),
+    sides = [SPRITE_SIDE] * len(pyramids)
+    if len(pyramids) > 1:   # one texture for all marks: the cost does not grow with their number
+        pyramids = SpriteAtlas(pyramids)
+    return Problem(grid=grid, pyramids=pyramids, sprite_sides=sides,
                    sprite=units.sprite, layer=units.layer, half_w=units.half_w,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
