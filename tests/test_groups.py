@@ -67,6 +67,7 @@ def test_two_marks_in_one_layer_pack_jointly():
     assert len(chart.layers) == 1
     svg = check_packed(chart, df["v"], "2 marks, 70 units")
     assert len(set(used_defs(svg).values())) == 2
+    assert "Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0" in svg   # the icons' licence
 
 
 def test_fourteen_marks_in_one_layer_pack_jointly():

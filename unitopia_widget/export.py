@@ -17,6 +17,9 @@ from PIL import Image
 
 from .svgsafe import SVG_NS
 
+ICON_CREDIT = ("<!-- Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0, "
+               "https://fontawesome.com/license/free -->")
+
 
 def _n(v: float) -> str:
     s = f"{float(v):.3f}".rstrip("0").rstrip(".")
@@ -46,6 +49,8 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None)
             def_id = f"u{i}m{len(ids)}"
             ids[key] = def_id
             defs.append(layer.marks[key[1]].svg_fragment(def_id, key[2]))
+    if any(by_name[name][1].marks[k].kind == "icon" for name, k, _ in ids):
+        out.append(ICON_CREDIT)   # the artwork's licence asks for attribution
     out.append("<defs>" + "".join(defs) + "</defs>")
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
     for k, (row, name) in enumerate(zip(table["row"], table["layer"])):
