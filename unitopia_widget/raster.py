@@ -172,13 +172,11 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
         gx = (cos * dx + sin * dy) / sx                                    # (n, ph, pw) sprite x in [-1, 1]
         gy = (cos * dy - sin * dx) / sy
         if atlas is None:
-            sprite, sample_grid, keep = pyramids[sprite_id][level], torch.stack([gx, gy], dim=-1), None
+            sprite, sample_grid = pyramids[sprite_id][level], torch.stack([gx, gy], dim=-1)
         else:   # sprite_id: (n,) the sprite of each mark, tiles of one texture
-            sprite, sample_grid, keep = atlas.grid(level, sprite_id, gx, gy)
+            sprite, sample_grid = atlas.grid(level, sprite_id, gx, gy)
         alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
-        if keep is not None:
-            alpha = alpha * keep.reshape(alpha.shape).to(alpha.dtype)
         o = origin.long()
         rows = o[:, 1, None] + torch.arange(ph, device=c.device)              # (n, ph)
         cols = o[:, 0, None] + torch.arange(pw, device=c.device)              # (n, pw)
