@@ -60,8 +60,8 @@ def check_packed(chart, values, label):
 
 
 def test_two_marks_in_one_layer_pack_jointly():
-    df = sized(70, ["apple", "fish"])
-    chart = uw.Chart(df, mark={"apple": "fa:apple-whole", "fish": "fa:fish"}, shape="kind", size="v",
+    df = sized(70, ["apple", "brick"])   # a round icon and a 2:1 block: different silhouettes
+    chart = uw.Chart(df, mark={"apple": "fa:apple-whole", "brick": str(DATA / "rect_2to1.svg")}, shape="kind", size="v",
                      color="kind", container=uw.Container.ellipse(*ELLIPSE), canvas=(400, 300))
     chart.layout()
     assert len(chart.layers) == 1
