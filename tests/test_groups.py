@@ -173,7 +173,12 @@ def test_version_1_designs_still_load():
     chart.apply_design(v1)
     assert chart.layers[0].marks == [uw.Mark.shape("heart")] and chart.layers[0].encodings["shape"] is None
     assert chart.design()["version"] == 2 and chart.design()["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
-    bad = dict(v1, version=2, layers=[dict(v1["layers"][0], marks=[{"kind": "shape", "name": "star"}],
+    edited = chart.design()   # an editor that knows only version 1 sets "mark": it wins
+    edited["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
+    chart.apply_design(edited)
+    assert chart.layers[0].marks == [uw.Mark.shape("star")]
+    v2_layer = {k: v for k, v in v1["layers"][0].items() if k != "mark"}
+    bad = dict(v1, version=2, layers=[dict(v2_layer, marks=[{"kind": "shape", "name": "star"}],
                                            mark_keys=["a", "a"])])
     with pytest.raises(ValueError, match=r"mark_keys must be null or a list of 1 distinct categories"):
         chart.apply_design(bad)

@@ -144,8 +144,9 @@ class Layer:
 
 def _design_marks(who: str, d: dict):
     """The ``mark=`` value of a design layer: its marks list (version 2), as a
-    ``{category: mark}`` dict when ``mark_keys`` is set, or its one mark (version 1)."""
-    if "marks" not in d:
+    ``{category: mark}`` dict when ``mark_keys`` is set, or its one mark (the version 1
+    key ``mark``, which wins when an editor that knows only version 1 set it)."""
+    if "mark" in d:
         return _mark(d["mark"], Mark.from_json)
     marks, keys = d["marks"], d.get("mark_keys")
     if not isinstance(marks, list) or not marks:
@@ -165,7 +166,7 @@ def _design_marks(who: str, d: dict):
 def _check_inline(who: str, d: dict) -> None:
     """ValueError unless the layer's marks and image container are inline data (no paths)."""
     container = d.get("container")
-    marks = d.get("marks") if isinstance(d.get("marks"), list) else [d.get("mark")]
+    marks = (d["marks"] if isinstance(d.get("marks"), list) else []) + [d.get("mark")]
     for mark in marks:
         if isinstance(mark, dict) and mark.get("kind") == "svg" and not (
                 isinstance(mark.get("svg"), str) and mark["svg"].lstrip("\ufeff \t\r\n").startswith("<")):
