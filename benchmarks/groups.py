@@ -61,14 +61,16 @@ def main(argv=None):
     print(f"# {platform.processor() or platform.machine()}, torch {torch.__version__}, one thread",
           file=sys.stderr)
     run(40, 2)   # warm up: the first layout of a process pays for lazy imports
-    print("| N | marks | CPU s | wall s | iterations | CPU ms / iteration | vs 1 mark (per it.) | overlap % | outside % |")
+    print("| N | marks | CPU s | wall s | iterations | CPU ms / iteration | vs 1 mark (per it.) | "
+          "overlap % | outside % |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n in a.sizes:
         base = None
         for k in (1, 2, 6, 14):
             r = run(n, k)
             base = base or r["ms_per_it"]
-            print(f"| {n} | {k} | {r['seconds']:.1f} | {r['wall']:.1f} | {r['iterations']} | {r['ms_per_it']:.1f} | "
+            print(f"| {n} | {k} | {r['seconds']:.1f} | {r['wall']:.1f} | {r['iterations']} | "
+                  f"{r['ms_per_it']:.1f} | "
                   f"{r['ms_per_it'] / base:.2f}x | {r['overlap_%']:.2f} | {r['outside_%']:.2f} |", flush=True)
 
 

@@ -15,7 +15,8 @@ import torch
 import unitopia_widget as uw
 from ink import ink_metrics
 from unitopia_widget.atlas import SpriteAtlas
-from unitopia_widget.raster import SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples, sprite_pyramid
+from unitopia_widget.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
+                                    sprite_pyramid)
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 DATA = pathlib.Path(__file__).parent / "data" / "marks"
@@ -61,7 +62,8 @@ def check_packed(chart, values, label):
 
 def test_two_marks_in_one_layer_pack_jointly():
     df = sized(70, ["apple", "brick"])   # a round icon and a 2:1 block: different silhouettes
-    chart = uw.Chart(df, mark={"apple": "fa:apple-whole", "brick": str(DATA / "rect_2to1.svg")}, shape="kind", size="v",
+    chart = uw.Chart(df, mark={"apple": "fa:apple-whole", "brick": str(DATA / "rect_2to1.svg")},
+                     shape="kind", size="v",
                      color="kind", container=uw.Container.ellipse(*ELLIPSE), canvas=(400, 300))
     chart.layout()
     assert len(chart.layers) == 1
@@ -126,6 +128,10 @@ def test_missing_categories_are_named_with_the_keys_given():
     with pytest.raises(ValueError, match=r"mark is a dict of category -> mark \('rose', 'tulip', 'lily', "
                                          r"'iris'\); set shape=<column>"):
         chart.layer(0).set(shape=None)
+    with pytest.raises(ValueError, match=r"shape='k': the column's values must be hashable categories"):
+        uw.Chart(pd.DataFrame({"k": [[1], [2]]}), mark=["circle", "star"], shape="k")
+    with pytest.raises(ValueError, match=r"shape='kind': 1 of 4 rows are missing; fill them"):
+        uw.Chart(pd.DataFrame({"kind": ["a", None, "b", "a"]}), mark=["circle", "star"], shape="kind")
 
 
 def test_layers_sharing_one_container_collide_both_ways():
@@ -172,7 +178,8 @@ def test_version_1_designs_still_load():
     chart = uw.Chart(pd.DataFrame({"v": [1.0, 2.0]}))
     chart.apply_design(v1)
     assert chart.layers[0].marks == [uw.Mark.shape("heart")] and chart.layers[0].encodings["shape"] is None
-    assert chart.design()["version"] == 2 and chart.design()["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
+    saved = chart.design()
+    assert saved["version"] == 2 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
     edited = chart.design()   # an editor that knows only version 1 sets "mark": it wins
     edited["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
     chart.apply_design(edited)
@@ -188,7 +195,8 @@ def test_icon_names_and_misspelt_ones():
     apple = uw.Mark.from_spec("fa:apple-whole")
     assert apple.kind == "icon" and apple.to_json() == {"kind": "icon", "name": "fa:apple-whole"}
     assert uw.Mark.from_spec("fa:solid/star") == uw.Mark.from_json({"kind": "icon", "name": "fa:solid/star"})
-    assert uw.Mark.from_spec("fa:star").silhouette(64).sum() > 1.5 * uw.Mark.from_spec("fa:regular/star").silhouette(64).sum()
+    solid, outline = (uw.Mark.from_spec(n).silhouette(64).sum() for n in ("fa:star", "fa:regular/star"))
+    assert solid > 1.5 * outline                                        # the styles differ
     assert uw.Mark.from_spec("fa:github").kind == "icon"                 # brands
     with pytest.raises(ValueError, match=r"mark: no Font Awesome icon named 'fa:aple-whole'; the closest "
                                          r"names are fa:apple-whole"):

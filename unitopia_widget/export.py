@@ -1,9 +1,10 @@
 """SVG and PNG export of a laid-out chart (DESIGN.md section 2, "SVG export").
 
 Structure: a root ``<svg width=W height=H viewBox="0 0 W H">``; the background,
-if any, as ``<image class="background">``; one definition per (layer, mark of
-the layer, colour) in ``<defs>``, each mark keeping its own vector design; one ``<g class="unit" data-row data-layer transform>``
-per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
+if any, as ``<image class="background">``; a comment crediting the icons'
+licence when Font Awesome icons are drawn; one definition per (layer, mark of
+the layer, colour) in ``<defs>``, each mark keeping its own vector design; one
+``<g class="unit" data-row data-layer transform>`` per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
 definition. The unit transform maps the mark's box onto its placement:
 ``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``.
 """

@@ -35,11 +35,16 @@ def mark_choice(df: pd.DataFrame, sub: pd.DataFrame, layer) -> np.ndarray:
         return np.arange(n) % k
     check_column(df, "shape", column)
     values = sub[column]
+    try:
+        categories = sorted_categories(df[column])
+    except TypeError:
+        raise ValueError(f"shape={column!r}: the column's values must be hashable categories "
+                         f"(str, number, ...), got {type(values.iloc[0]).__name__}") from None
     if values.isna().any():
         raise ValueError(f"shape={column!r}: {int(values.isna().sum())} rows of layer "
                          f"{layer.name!r} are missing; fill them or pass dropna=True")
     if keys is None:
-        code = {v: i % k for i, v in enumerate(sorted_categories(df[column]))}
+        code = {v: i % k for i, v in enumerate(categories)}
         return np.array([code[v] for v in values], dtype=np.int64)
     lookup = {}
     for i, key in enumerate(keys):
