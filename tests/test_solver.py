@@ -76,7 +76,7 @@ def test_open_layout_keeps_the_requested_fill_and_no_overlap():
 
 def test_placements_table_columns_and_rows(closed_layout):
     c, table = closed_layout
-    assert list(table.columns) == ["row", "layer", "x", "y", "angle", "sx", "sy", "width", "height"]
+    assert list(table.columns) == ["row", "layer", "x", "y", "angle", "sx", "sy", "width", "height", "mark"]
     assert table["row"].tolist() == list(range(50)) and set(table["layer"]) == {"layer-1"}
     assert table[["x", "y", "angle", "sx", "sy", "width", "height"]].notna().all().all()
     assert (table["angle"] == 0).all()

@@ -237,16 +237,17 @@ def _fields(container, grid: RasterGrid, falloff: float):
 
 
 def placements(units: Units, layers, result: Result) -> pd.DataFrame:
-    """The layout table: one row per unit (row, layer, mark, x, y, angle, sx, sy, width,
-    height); ``mark`` indexes the layer's marks."""
+    """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height,
+    mark); ``mark`` indexes the layer's marks."""
     names = np.array([layer.name for layer in layers], dtype=object)
     width = 2 * units.half_w * result.scale
     height = 2 * units.half_h * result.scale
     box = units.box_size
     return pd.DataFrame({
-        "row": units.rows, "layer": names[units.layer], "mark": units.mark,
+        "row": units.rows, "layer": names[units.layer],
         "x": result.center[:, 0], "y": result.center[:, 1], "angle": result.angle,
         "sx": width / box[:, 0], "sy": height / box[:, 1], "width": width, "height": height,
+        "mark": units.mark,
     })
 
 

@@ -104,7 +104,8 @@ class UnitoPia(anywidget.AnyWidget):
 
     @property
     def placements(self) -> pd.DataFrame | None:
-        """One row per unit: row, layer, x, y, angle, sx, sy (and width, height in px)."""
+        """One row per unit: row, layer, x, y, angle, sx, sy (and width, height in px, and
+        mark: the index into the layer's marks)."""
         return self._chart.placements
 
     @property
