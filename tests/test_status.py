@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import copy
+import re
 
 import numpy as np
 import pandas as pd
@@ -121,14 +122,20 @@ def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
     assert w.legend == {}
 
 
-def test_the_display_bundle_carries_the_layout_as_an_image(df):
+def test_the_static_output_carries_the_layout_as_an_image(df):
     w = uw.UnitoPia(df, size="v", iterations=20)
     data, _ = w._repr_mimebundle_()
-    assert "application/vnd.jupyter.widget-view+json" in data and "image/svg+xml" not in data
-    assert "not laid out yet" in data["text/plain"]
+    assert "application/vnd.jupyter.widget-view+json" in data
+    assert "UnitoPia chart: 8 rows in 1 layer(s), not laid out yet" in data["text/plain"]
+    assert "image/svg+xml" not in w._static.bundle()
     w.run(wait=True)
-    data, _ = w._repr_mimebundle_()
+    data = w._static.bundle()
     assert data["image/svg+xml"].count('class="unit"') == len(df)
+    assert data["text/html"].count('class="unit"') == len(df)
+    assert "display:none" in data["text/html"]           # hidden after a live view only
+    ids = re.findall(r'id="([^"]+)"', data["image/svg+xml"])
+    refs = re.findall(r'href="#([^"]+)"', data["image/svg+xml"])
+    assert ids and set(refs) <= set(ids) and all(i.startswith("c") for i in ids)
     assert base64.b64decode(data["image/png"])[:8] == b"\x89PNG\r\n\x1a\n"
     state = w.get_state()                        # what a saved notebook keeps of the widget
     assert len(state["frame"]) == 16 * len(df) and len(state["units"]) == 16 * len(df)

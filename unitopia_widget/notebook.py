@@ -1,64 +1,74 @@
-"""The widget's place in a notebook's saved output: a static image beside the live view.
+"""The widget's place in a notebook's saved output: a static image after the live view.
 
-A widget output holds the widget view (``application/vnd.jupyter.widget-view+json``)
-and, once a layout exists, the layout as ``image/svg+xml`` and ``image/png``.
-Where the live view cannot render (nbconvert HTML, static viewers, a notebook
-reopened without a kernel and without saved widget state) the image shows.
-Every display of one widget shares a ``display_id``, so ``update`` (called when
-a run ends) refreshes the saved image of every output showing the widget.
+Displaying a widget writes two outputs: the widget view, then a static output
+holding the layout (``text/html`` with the SVG inline, ``image/svg+xml``,
+``image/png``, ``text/plain``) under a ``display_id``, refreshed when a run ends.
+
+Why a second output and not one more type in the view's bundle: nbconvert
+``--execute`` saves the widget state, and nbconvert's HTML exporter then always
+picks the widget view (it renders only with a widget manager from a CDN), so a
+static type beside it never shows. The static output shows wherever the live
+widget does not render (nbconvert HTML, static viewers, a notebook reopened
+without a kernel); where it does render (JupyterLab, Notebook 7), a style rule in
+the static output hides it right after a live ``.unitopia`` view.
 """
 from __future__ import annotations
 
 import base64
+import re
 import uuid
 
 from .export import to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
+HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "
+                   ".jp-OutputArea-child:has(.unitopia-static){display:none}</style>")
+_REFS = re.compile(r'(\bid="|href="#|url\(#)')
 
 
 class StaticDisplay:
-    """The display bookkeeping of one widget."""
+    """The static output of one widget."""
 
     def __init__(self, widget):
         self.widget = widget
         self.display_id = f"unitopia-{uuid.uuid4().hex}"
         self.shown = False
 
-    def bundle(self, view: dict) -> dict:
-        """The MIME bundle: ``view`` (the widget's own bundle) plus the static layout."""
+    def plain(self) -> str:
         w = self.widget
         chart = w._chart
         state = "not laid out yet (run it)" if chart.placements is None else f"status {w.status}"
-        out = dict(view)
-        out["text/plain"] = PLAIN.format(rows=len(chart.df), layers=len(chart.layers), state=state)
-        svg = self.svg()
-        if svg is not None:
-            out["image/svg+xml"] = svg
-            out["image/png"] = base64.b64encode(to_png(svg, _size(svg), 1.0)).decode()
-        return out
+        return PLAIN.format(rows=len(chart.df), layers=len(chart.layers), state=state)
 
     def svg(self) -> str | None:
-        """The current layout as exported (legend, title, caption), or None without one."""
+        """The current layout as exported (legend, title, caption), ids prefixed so that
+        several charts inline in one page keep their own definitions; None without one."""
         try:
-            return self.widget._chart.to_svg()
+            svg = self.widget._chart.to_svg()
         except RuntimeError:   # no layout yet, or one that no longer matches the layers
             return None
+        prefix = self.display_id[len("unitopia-"):][:8]
+        return _REFS.sub(lambda m: m.group(1) + f"c{prefix}-", svg)
 
-    def show(self, view: tuple[dict, dict]) -> None:
-        """Display ``view`` (data, metadata) with the static image, under the display_id."""
+    def bundle(self) -> dict:
+        """The static output's MIME bundle."""
+        plain = self.plain()
+        svg = self.svg()
+        if svg is None:
+            return {"text/plain": plain,
+                    "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static"><pre>{plain}</pre></div>'}
+        from .chart import svg_size
+        png = base64.b64encode(to_png(svg, svg_size(svg), 1.0)).decode()
+        return {"text/plain": plain, "image/svg+xml": svg, "image/png": png,
+                "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static">{svg}</div>'}
+
+    def show(self) -> None:
         from IPython.display import display
-        display(self.bundle(view[0]), raw=True, metadata=view[1], display_id=self.display_id)
+        display(self.bundle(), raw=True, display_id=self.display_id)
         self.shown = True
 
-    def update(self, view: tuple[dict, dict]) -> None:
-        """Refresh every output that shows the widget (no-op when it was never displayed)."""
-        if not self.shown:
-            return
-        from IPython.display import update_display
-        update_display(self.bundle(view[0]), raw=True, metadata=view[1], display_id=self.display_id)
-
-
-def _size(svg: str) -> tuple[float, float]:
-    from .chart import svg_size
-    return svg_size(svg)
+    def update(self) -> None:
+        """Refresh every static output of the widget (no-op when it was never displayed)."""
+        if self.shown:
+            from IPython.display import update_display
+            update_display(self.bundle(), raw=True, display_id=self.display_id)

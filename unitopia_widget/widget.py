@@ -241,7 +241,7 @@ class UnitoPia(anywidget.AnyWidget):
             "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
             "width": image[1], "height": image[2]})
         try:
-            self._static.update(self._mimebundle_view())
+            self._static.update()
         except Exception:   # no kernel to publish to: the live view is all there is
             pass
 
@@ -342,19 +342,18 @@ class UnitoPia(anywidget.AnyWidget):
 
 
     # --- the notebook's saved output ------------------------------------------------
-    def _mimebundle_view(self) -> tuple[dict, dict]:
-        """(data, metadata) of the live widget view alone."""
-        view = super()._repr_mimebundle_()
-        return view if isinstance(view, tuple) else (view or {}, {})
-
     def _repr_mimebundle_(self, **kwargs):
-        """The widget view plus, once laid out, the layout as image/svg+xml and image/png."""
-        data, metadata = self._mimebundle_view()
-        return self._static.bundle(data), metadata
+        """The widget view, with a text/plain that says what the chart is."""
+        view = super()._repr_mimebundle_(**kwargs)
+        data, metadata = view if isinstance(view, tuple) else (view or {}, {})
+        return {**data, "text/plain": self._static.plain()}, metadata
 
     def _ipython_display_(self) -> None:
-        """Displayed under one display_id, so the end of a run refreshes the saved image."""
-        self._static.show(self._mimebundle_view())
+        """The widget view, then its static image (notebook.py), refreshed when a run ends."""
+        from IPython.display import display
+        data, metadata = self._repr_mimebundle_()
+        display(data, raw=True, metadata=metadata)
+        self._static.show()
 
 
 LAYOUT_FREE = ("title", "caption", "legend")   # design keys that do not change the layout
