@@ -12,6 +12,7 @@ import numpy as np
 from . import engine, legend as legend_mod, legend_draw
 from .export import to_svg
 from .outline import outlines
+from .svgsafe import sanitize_svg
 from .page import CAPTION_CHARS, TITLE_CHARS, check_position, check_text, compose
 
 
@@ -74,11 +75,13 @@ def sections(chart, units):
 
 
 def legend_image(chart) -> tuple[str, float, float] | None:
-    """The legend alone as an SVG document (None when the chart shows no legend)."""
+    """``(svg, width, height)``: the legend alone as a sanitised SVG document, px (None
+    when the chart shows no legend). The widget's ``legend`` trait carries it."""
     opts = chart.page
     if not (opts.legend["visible"] and any_bound(chart)) or chart._units is None:
         return None
-    return legend_draw.standalone(sections(chart, chart._units))
+    svg, w, h = legend_draw.standalone(sections(chart, chart._units))
+    return sanitize_svg(svg), w, h
 
 
 def export_svg(chart, units, legend=None, title=None, caption=None, outline=False) -> str:
