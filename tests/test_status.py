@@ -174,3 +174,18 @@ def test_a_one_pixel_container_box_is_refused(df):
     mask = np.ones((4, 4), bool)
     with pytest.raises(ValueError, match="holds 1 px\\^2 for 8 marks, so each mark would be under 2 px"):
         uw.Chart(df, container=uw.Container.image(mask, box=(10, 10, 1, 1)))
+
+
+def test_the_png_export_button_renders_the_whole_page_with_its_legend(df):
+    from PIL import Image
+    import io
+    w = uw.UnitoPia(df, size="v", color="k", iterations=20, title="T")
+    w.run(wait=True)
+    sent = []
+    w.send = lambda msg, buffers=None: sent.append(msg)
+    w._on_message(w, {"type": "export", "format": "png"}, [])
+    png = base64.b64decode(sent[0]["data"].split(",", 1)[1])
+    width, height = Image.open(io.BytesIO(png)).size
+    view = [float(v) for v in re.search(r'viewBox="([^"]+)"', w.to_svg()).group(1).split()]
+    assert width == pytest.approx(2 * view[2], abs=3) and height == pytest.approx(2 * view[3], abs=3)
+    assert width > 1600                                       # the canvas and its legend

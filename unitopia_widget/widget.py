@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import traitlets as t
 
-from .chart import ARGUMENTS, Chart, check_kwargs, load_design
+from .chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
 from .encodings import rgba
 from .export import to_png
 from .notebook import StaticDisplay
@@ -47,7 +47,11 @@ class UnitoPia(anywidget.AnyWidget):
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
     covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),
-    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning).
+    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning),
+    ``title``/``caption`` (text above/below the exported chart), ``legend`` (True, False,
+    or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound).
+    ``status`` is "idle", "running", "done", "stopped" or "error"; ``stale`` is True when
+    the design changed since the shown layout.
     """
 
     _esm = STATIC / "widget.js"
@@ -333,7 +337,7 @@ class UnitoPia(anywidget.AnyWidget):
         svg = self._chart.to_svg()
         if fmt == "png":
             data = "data:image/png;base64," + base64.b64encode(
-                to_png(svg, self._chart.canvas, 2.0)).decode()
+                to_png(svg, svg_size(svg), 2.0)).decode()
         elif fmt == "svg":
             data = svg
         else:
