@@ -15,12 +15,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from xml.sax.saxutils import escape, quoteattr
-
 import numpy as np
 import pandas as pd
 
-from .encodings import SEQUENTIAL, is_css_color, palette_for
+from .encodings import is_css_color, palette_for
 
 FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)
