@@ -224,7 +224,7 @@ class UnitoPia(anywidget.AnyWidget):
             self._error_from = None
             self._quiet(error="")
         self._quiet(progress=final, status="stopped" if stopped else "done")
-        self._push_extras()
+        self._push_extras(static=True)
 
     def _quiet(self, **traits) -> None:
         """Set traits whose sync may fail (a dead comm): the Python side keeps the values."""
@@ -235,8 +235,9 @@ class UnitoPia(anywidget.AnyWidget):
                 if getattr(self, name) != value:   # not even stored: nothing more to do
                     self.set_trait(name, value)
 
-    def _push_extras(self) -> None:
-        """After a run or a design change: the legend image, the notebook's static image."""
+    def _push_extras(self, static: bool = False) -> None:
+        """After a design change: the legend image; after a run (``static``) also the
+        notebook's static image (rendering it at every edit would slow big charts down)."""
         try:
             image = legend_image(self._chart)
         except Exception:   # a design the legend cannot draw yet: shown without one
@@ -244,6 +245,8 @@ class UnitoPia(anywidget.AnyWidget):
         self._quiet(legend={} if image is None else {
             "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
             "width": image[1], "height": image[2]})
+        if not static:
+            return
         try:
             self._static.update()
         except Exception:   # no kernel to publish to: the live view is all there is
