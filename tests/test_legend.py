@@ -175,3 +175,10 @@ def test_round_values():
     assert round_values(1, 1000) == [250, 500, 750, 1000]
     assert round_values(12, 13.5) == [12, 12.5, 13, 13.5]
     assert 2 <= len(round_values(0.003, 0.0071)) <= 4
+
+
+def test_a_size_legend_of_big_marks_keeps_to_the_ends_of_the_range():
+    c = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0, 4.0, 1.5, 2.5]}), size="v", iterations=20)
+    c.layout()
+    svg = c.to_svg()
+    assert [float(g.get("data-value")) for g in entries(svg, "size")] == [1, 4]

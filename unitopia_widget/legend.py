@@ -99,13 +99,14 @@ def _rows_label(layer) -> str:
     return " (chosen rows)"
 
 
-def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray) -> list[Section]:
+def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray, room: float = np.inf) -> list[Section]:
     """The legend of ``layers`` over ``units`` (engine.Units). ``boxes``: ``(N, 2)`` drawn
-    box width and height per unit, canvas px (from the placements)."""
+    box width and height per unit, canvas px (from the placements); ``room``: the height a
+    size legend's marks may take together before it shows only its two end values."""
     rows = df.loc[units.rows]
     out = []
     out.extend(_color_sections(rows, layers, units))
-    out.extend(_size_sections(rows, layers, units, boxes))
+    out.extend(_size_sections(rows, layers, units, boxes, room))
     out.append(_unit_key(layers, units))
     return out
 
@@ -137,7 +138,7 @@ def _color_sections(rows, layers, units) -> list[Section]:
     return out
 
 
-def _size_sections(rows, layers, units, boxes) -> list[Section]:
+def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
     """One section per size column; layers sharing a column and its area per value share it."""
     out = []
     by_column: dict = {}
@@ -174,6 +175,8 @@ def _size_sections(rows, layers, units, boxes) -> list[Section]:
                 box_area = per_value * v / mark.fill_fraction
                 h = math.sqrt(box_area / mark.aspect)
                 sec.entries.append(Entry("size", _number(v), _number(v), mark, color, h * mark.aspect, h))
+            if sum(e.h for e in sec.entries) > room:   # big marks: the ends of the range only
+                sec.entries = [sec.entries[0], sec.entries[-1]]
             out.append(sec)
     return out
 

@@ -71,7 +71,8 @@ def unit_boxes(chart, units) -> np.ndarray:
 
 
 def sections(chart, units):
-    return legend_mod.sections(chart.df, chart.layers, units, unit_boxes(chart, units))
+    return legend_mod.sections(chart.df, chart.layers, units, unit_boxes(chart, units),
+                               room=chart.canvas[1])
 
 
 def legend_image(chart) -> tuple[str, float, float] | None:
