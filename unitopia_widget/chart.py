@@ -18,7 +18,8 @@ import pandas as pd
 
 from . import engine
 from .encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
-from .export import to_png, to_svg
+from .export import to_png
+from .publish import PageOptions, export_svg
 from .images import image_data_url, load_image
 from .scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
@@ -26,9 +27,10 @@ from .validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
-             "background", "seed", "device", "iterations", "dropna")
+             "background", "seed", "device", "iterations", "dropna", "title", "caption", "legend")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
+MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -59,6 +61,9 @@ class Chart:
         self.canvas = _canvas(opts.pop("canvas", (800, 500)))
         self.background = _background(opts.pop("background", None))
         self.seed = _seed(opts.pop("seed", 0))
+        self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
+                                True if opts.get("legend") is None else opts["legend"])
+        opts.pop("legend", None)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
         mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
@@ -202,11 +207,19 @@ class Chart:
                                  f"wide a range: the largest mark would be more than {MAX_SPREAD:g} "
                                  f"times the smallest (or overflow); clip, rescale or log-transform "
                                  f"the column")
-        for layer in layers:
-            if layer.container is not None and not layer.container.area(canvas) > 0:
+        for i, layer in enumerate(layers):
+            if layer.container is None:
+                continue
+            area = layer.container.area(canvas)
+            if not area > 0:
                 raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} has no "
                                  f"area inside the {canvas[0]:g} x {canvas[1]:g} canvas; move it "
                                  f"onto the canvas")
+            count = int((units.layer == i).sum())
+            if area < MIN_MARK_AREA * count:
+                raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} holds "
+                                 f"{area:.3g} px^2 for {count} marks, so each mark would be under "
+                                 f"{MIN_MARK_AREA ** 0.5:g} px across; make the container larger")
         return units
 
     # --- layout -------------------------------------------------------------
@@ -225,8 +238,38 @@ class Chart:
         units = self._units if units is None else units
         return row_titles(self.df.loc[units.rows])
 
-    def to_svg(self) -> str:
-        """The laid-out chart as SVG text (run the layout first)."""
+    # --- title, caption, legend ------------------------------------------------------
+    title = property(lambda self: self.page.title, doc="The chart's title (None: none).")
+    caption = property(lambda self: self.page.caption, doc="The caption under the chart.")
+    legend = property(lambda self: dict(self.page.legend),
+                      doc='{"visible": bool, "position": "right" | "bottom" | "left" | "top" | [x, y]}')
+
+    @title.setter
+    def title(self, value):
+        self._set_page(title=value)
+
+    @caption.setter
+    def caption(self, value):
+        self._set_page(caption=value)
+
+    @legend.setter
+    def legend(self, value):
+        self._set_page(legend=value)
+
+    def _set_page(self, **change) -> None:
+        d = {**self.page.to_json(), **change}
+        self.page = PageOptions(d["title"], d["caption"], d["legend"])
+        self._changed()
+
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+        """The laid-out chart as SVG text (run the layout first).
+
+        ``legend``: None (the chart's setting: shown when a channel is bound), True,
+        False, or a position ("right", "bottom", "left", "top", [x, y] canvas px);
+        ``title``/``caption``: text drawn above/below (None: the chart's, "" none);
+        ``outline``: draw each layer's container as ``<path class="container">``.
+        The size legend is area-true at the layout's scale; layers bound to the same
+        size column share one size legend, which says so."""
         if self.placements is None:
             raise RuntimeError("no layout yet: call run() (or run(wait=True)) first")
         gone = sorted(set(self.placements["layer"]) - {layer.name for layer in self.layers})
@@ -241,18 +284,20 @@ class Chart:
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
-        svg = to_svg(self.canvas, self.placements, self.layers, units.colors,
-                     self.titles(units), self.background)
+        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
-    def save(self, path) -> None:
-        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design)."""
+    def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
+        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design).
+        ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
+        if ext in (".svg", ".png"):
+            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
         if ext == ".svg":
-            _atomic_write(path, self.to_svg().encode())
+            _atomic_write(path, svg.encode())
         elif ext == ".png":
-            _atomic_write(path, to_png(self.to_svg(), self.canvas, 2.0))
+            _atomic_write(path, to_png(svg, svg_size(svg), 2.0))
         elif ext == ".json":
             _atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:
@@ -262,7 +307,8 @@ class Chart:
         """The design JSON (docs/protocol.md)."""
         return {"schema": SCHEMA, "version": VERSION, "canvas": list(self.canvas),
                 "background": None if self.background is None else {"image": self.background},
-                "seed": self.seed, "layers": [layer.to_json() for layer in self.layers]}
+                "seed": self.seed, **self.page.to_json(),
+                "layers": [layer.to_json() for layer in self.layers]}
 
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
@@ -275,6 +321,10 @@ class Chart:
             raise ValueError(f"design: background must be null or {{\"image\": \"data:image/png;"
                              f"base64,...\"}}; got {background!r:.60}")
         background = _background(background["image"]) if background else None
+        try:
+            page = PageOptions.from_json(d)
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"design: {exc}") from None
         if len(d["layers"]) > MAX_LAYERS:
             raise ValueError(f"design: {len(d['layers'])} layers, more than the {MAX_LAYERS} "
                              f"this widget lays out")
@@ -295,8 +345,15 @@ class Chart:
         for layer in layers:
             layer._on_change = self._layer_changed
         self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
+        self.page = page
         self._units = units
         self._changed()
+
+
+def svg_size(svg: str) -> tuple[float, float]:
+    """(width, height) of the root of an exported SVG."""
+    m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
+    return float(m.group(1)), float(m.group(2))
 
 
 def load_design(path) -> dict:

@@ -19,7 +19,7 @@ import pandas as pd
 import torch
 
 from .atlas import SpriteAtlas
-from .encodings import Encoded, check_column, encode, palette_for
+from .encodings import Encoded, check_column, encode, palette_for, unhashable
 from .groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
@@ -79,8 +79,13 @@ def bind(df: pd.DataFrame, layers) -> Units:
     """Encode all layers. Raises ValueError for empty layers or bad bindings."""
     color_cols = {layer.encodings["color"] for layer in layers
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
-    palettes = {c: palette_for(df[c]) for c in color_cols
-                if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c])}
+    palettes = {}
+    for c in color_cols:
+        if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c]):
+            try:
+                palettes[c] = palette_for(df[c])
+            except TypeError:
+                raise unhashable("color", c, df[c]) from None
     # numeric colours: one scale per column, shared by the layers (as the palettes are)
     domains = {c: _finite_range(df[c]) for c in color_cols if c not in palettes}
     parts, rows, sprites = [], [], {}

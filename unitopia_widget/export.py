@@ -27,20 +27,26 @@ def _n(v: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def to_svg(canvas, table, layers, colors, titles, background: str | None = None) -> str:
+def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
+           page=None, under: str = "") -> str:
     """The chart as SVG text.
 
     ``table``: the placements DataFrame (one row per unit, layer order; its ``mark``
     column indexes each layer's marks);
     ``colors``: CSS colour per unit; ``titles``: tooltip text per unit;
-    ``background``: a PNG data URL or None.
+    ``background``: a PNG data URL or None; ``page``: a ``page.Page`` (the viewBox
+    around the canvas and the legend, title and caption drawn over it) or None;
+    ``under``: SVG drawn between the background and the units (container outlines).
     """
     w, h = canvas
+    vx, vy, vw, vh = page.view if page is not None else (0, 0, w, h)
     out = [f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" '
-           f'width="{_n(w)}" height="{_n(h)}" viewBox="0 0 {_n(w)} {_n(h)}">']
+           f'width="{_n(vw)}" height="{_n(vh)}" viewBox="{_n(vx)} {_n(vy)} {_n(vw)} {_n(vh)}">']
     if background:
         out.append(f'<image class="background" x="0" y="0" width="{_n(w)}" height="{_n(h)}" '
                    f'preserveAspectRatio="none" href={quoteattr(background)}/>')
+    if under:
+        out.append(under)
     by_name = {layer.name: (i, layer) for i, layer in enumerate(layers)}
     defs, ids = [], {}
     keys = list(zip(table["layer"], table["mark"], colors))
@@ -62,12 +68,14 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None)
         out.append(f'<g class="unit" data-row={quoteattr(str(row))} data-layer={quoteattr(name)} '
                    f'transform="{transform}"><title>{escape(titles[k])}</title>'
                    f'<use href="#{ids[keys[k]]}"/></g>')
+    if page is not None and page.overlay:
+        out.append(page.overlay)
     out.append("</svg>")
     return "\n".join(out)
 
 
 def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:
-    """PNG bytes of ``svg`` rendered at ``scale`` x the canvas size (resvg)."""
+    """PNG bytes of ``svg`` rendered at ``scale`` x ``canvas`` (the SVG's width, height) (resvg)."""
     import resvg_py
 
     w, h = canvas

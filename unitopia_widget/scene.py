@@ -22,6 +22,7 @@ CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
 BOUNDARIES = ("closed", "open")
+MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
                 "rotate", "blocks", "iterations", "name") + CHANNELS
@@ -44,7 +45,7 @@ class Layer:
                  forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
                  blocks=(), iterations=600, on_change=None, **encodings):
         self._on_change = None
-        self.name, self.rows = str(name), _rows(rows)
+        self.name, self.rows = layer_name(name), _rows(rows)
         self.marks, self.mark_keys = _mark_set("circle" if mark is None else mark)
         self.encodings = {c: None for c in CHANNELS}
         self.encodings["margin"] = 0.0
@@ -314,9 +315,19 @@ _CHECKS = {
     "boundary": lambda v: check_choice("Layer", "boundary", v, BOUNDARIES),
     "fill": _fill, "orientation": _orientation, "rotate": _rotate,
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
-    "iterations": _iterations, "name": str,
+    "iterations": _iterations, "name": lambda v: layer_name(v),
     **{c: _channel(c) for c in CHANNELS},
 }
+
+
+def layer_name(value) -> str:
+    """A layer name: any value as text, at most ``MAX_NAME`` characters (names are repeated
+    in every unit of the SVG and in error messages)."""
+    name = str(value)
+    if len(name) > MAX_NAME:
+        raise ValueError(f"layer name is {len(name)} characters long ({name[:40]!r}...); at most "
+                         f"{MAX_NAME} are allowed: choose a shorter name")
+    return name
 
 
 def block_order(layers) -> list[int]:
