@@ -11,7 +11,7 @@ export function createLegend(view, signal) {
   const area = h("div", { class: "ut-canvas-area" }, stage.wrap);
   const toggle = h("button", { type: "button", class: "ut-btn", dataset: { action: "toggle-legend" }, title: "Show or hide the legend", "aria-label": "Show or hide the legend",
     onclick: () => view.commit(setLegend(view.design(), { visible: !legendSettings(view.design()).visible })) }, "Legend");
-  let drag = null; // {pointer, corner, size} while dragging
+  let drag = null; // {pointer, start, size, corner, stop} while dragging
 
   const trait = () => {
     const l = model.get("legend");
@@ -52,33 +52,37 @@ export function createLegend(view, signal) {
     return [(r.left - s.left - stage.el.clientLeft) / stage.scale, (r.top - s.top - stage.el.clientTop) / stage.scale];
   }
 
+  // The drag listens on the window: the legend moves into the stage when the drag starts,
+  // and an element taken out of the document loses its pointer capture.
   listen(img, "pointerdown", (ev) => {
     const l = trait();
-    if (ev.button !== 0 || !l) return;
+    if (ev.button !== 0 || !l || drag) return;
     ev.preventDefault();
     ev.stopPropagation(); // not a stroke of the current tool
-    img.setPointerCapture(ev.pointerId);
-    drag = { pointer: [ev.clientX, ev.clientY], start: cornerNow(), corner: null, size: size(l) };
-    drag.corner = clampCorner(drag.start, drag.size, stage.size);
+    const start = cornerNow();
+    drag = { pointer: [ev.clientX, ev.clientY], start, size: size(l), corner: null, stop: new AbortController() };
+    drag.corner = clampCorner(start, drag.size, stage.size);
+    const opts = { signal: drag.stop.signal };
+    window.addEventListener("pointermove", move, opts);
+    window.addEventListener("pointerup", () => finish(true), opts);
+    window.addEventListener("pointercancel", () => finish(false), opts);
+    signal.addEventListener("abort", () => drag && drag.stop.abort(), opts);
     place();
   }, signal);
-  listen(img, "pointermove", (ev) => {
-    if (!drag) return;
-    ev.stopPropagation();
+
+  function move(ev) {
     const d = [(ev.clientX - drag.pointer[0]) / stage.scale, (ev.clientY - drag.pointer[1]) / stage.scale];
     drag.corner = clampCorner([drag.start[0] + d[0], drag.start[1] + d[1]], drag.size, stage.size);
     place();
-  }, signal);
-  const finish = (ev, keep) => {
-    if (!drag) return;
-    ev.stopPropagation();
-    const corner = drag.corner;
+  }
+
+  function finish(keep) {
+    const { corner, stop } = drag;
+    stop.abort();
     drag = null;
     if (keep) view.commit(setLegend(view.design(), { position: corner }));
     else place();
-  };
-  listen(img, "pointerup", (ev) => finish(ev, true), signal);
-  listen(img, "pointercancel", (ev) => finish(ev, false), signal);
+  }
   listen(img, "load", () => place(), signal);
 
   return { area, toggle, place };

@@ -2271,31 +2271,31 @@ function createLegend(view, signal) {
   }
   listen(img, "pointerdown", (ev) => {
     const l = trait();
-    if (ev.button !== 0 || !l) return;
+    if (ev.button !== 0 || !l || drag) return;
     ev.preventDefault();
     ev.stopPropagation();
-    img.setPointerCapture(ev.pointerId);
-    drag = { pointer: [ev.clientX, ev.clientY], start: cornerNow(), corner: null, size: size(l) };
-    drag.corner = clampCorner(drag.start, drag.size, stage.size);
+    const start = cornerNow();
+    drag = { pointer: [ev.clientX, ev.clientY], start, size: size(l), corner: null, stop: new AbortController() };
+    drag.corner = clampCorner(start, drag.size, stage.size);
+    const opts = { signal: drag.stop.signal };
+    window.addEventListener("pointermove", move, opts);
+    window.addEventListener("pointerup", () => finish(true), opts);
+    window.addEventListener("pointercancel", () => finish(false), opts);
+    signal.addEventListener("abort", () => drag && drag.stop.abort(), opts);
     place();
   }, signal);
-  listen(img, "pointermove", (ev) => {
-    if (!drag) return;
-    ev.stopPropagation();
+  function move(ev) {
     const d = [(ev.clientX - drag.pointer[0]) / stage.scale, (ev.clientY - drag.pointer[1]) / stage.scale];
     drag.corner = clampCorner([drag.start[0] + d[0], drag.start[1] + d[1]], drag.size, stage.size);
     place();
-  }, signal);
-  const finish = (ev, keep) => {
-    if (!drag) return;
-    ev.stopPropagation();
-    const corner = drag.corner;
+  }
+  function finish(keep) {
+    const { corner, stop } = drag;
+    stop.abort();
     drag = null;
     if (keep) view.commit(setLegend(view.design(), { position: corner }));
     else place();
-  };
-  listen(img, "pointerup", (ev) => finish(ev, true), signal);
-  listen(img, "pointercancel", (ev) => finish(ev, false), signal);
+  }
   listen(img, "load", () => place(), signal);
   return { area, toggle, place };
 }
