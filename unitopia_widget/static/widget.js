@@ -313,6 +313,7 @@ function createStage(signal) {
   };
   stage.layout = (size) => {
     const [W, H] = size;
+    wrap.style.maxWidth = `${W}px`;
     const avail = wrap.clientWidth || W;
     const scale = Math.min(1, avail / W);
     const dpr = window.devicePixelRatio || 1;
