@@ -40,6 +40,9 @@ def test_mark_set_add_from_shape_upload_and_icon_name_then_reorder_and_remove(pa
     assert kinds(page) == ["circle", "star", "svg", "fa:apple-whole"]
     # Each mark shows the kernel's rendering of it (`marks` entries with "mark": k).
     page.wait_for_function("document.querySelectorAll('.ut-mark-list img').length === 4")
+    shown = page.evaluate("[...document.querySelectorAll('.ut-mark-list [data-mark] img')].map((i) => i.src)")
+    assert shown == page.evaluate("[0, 1, 2, 3].map((k) => fake.get('marks').find((m) => m.mark === k).src)")
+    assert len(set(shown)) == 4
     saves = save_count(page)
     page.click('[data-mark="3"] [data-mark-action="up"]')
     assert kinds(page) == ["circle", "star", "fa:apple-whole", "svg"]
