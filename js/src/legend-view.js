@@ -24,7 +24,8 @@ export function createLegend(view, signal) {
     const l = trait();
     const { visible, position } = legendSettings(view.design());
     toggle.setAttribute("aria-pressed", String(visible));
-    toggle.setAttribute("aria-disabled", String(!l));
+    // Python sends no legend while it is hidden, so only a visible one can be missing.
+    toggle.setAttribute("aria-disabled", String(visible && !l));
     img.hidden = !l || !visible;
     if (!l) return void img.removeAttribute("src");
     if (img.getAttribute("src") !== l.src) img.src = l.src;

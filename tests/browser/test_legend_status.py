@@ -59,7 +59,11 @@ def test_legend_is_shown_beside_the_canvas_dragged_and_hidden(page):
     assert page.evaluate("fake.get('design').legend") == {"visible": False, "position": [680, 420]}
     assert legend.is_hidden()
     assert page.get_attribute('[data-action="toggle-legend"]', "aria-pressed") == "false"
+    page.evaluate("fake.push('legend', {})")  # Python sends none while it is hidden
+    assert page.get_attribute('[data-action="toggle-legend"]', "aria-disabled") == "false"
     page.click('[data-action="toggle-legend"]')
+    assert page.evaluate("fake.get('design').legend.visible") is True
+    push_legend(page)
     legend.wait_for(state="visible")
 
 

@@ -57,6 +57,18 @@ def test_mark_set_add_from_shape_upload_and_icon_name_then_reorder_and_remove(pa
     assert page.locator('[data-mark="0"] [data-mark-action="remove"]').is_disabled(), "a layer keeps one mark"
 
 
+def test_each_mark_names_the_category_it_draws(page):
+    mount(page)
+    page.evaluate("""() => { const d = fake.get('design');
+        d.layers[0].marks = [{kind: 'shape', name: 'circle'}, {kind: 'icon', name: 'fa:bug'}];
+        d.layers[0].mark_keys = ['feature', 'bug']; d.layers[0].encodings.shape = 'Task';
+        fake.push('design', JSON.parse(JSON.stringify(d))); }""")
+    assert page.locator(".ut-mark-label").all_inner_texts() == ["circle = feature", "fa:bug = bug"]
+    page.click('[data-mark="1"] [data-mark-action="up"]')
+    assert layer(page)["mark_keys"] == ["bug", "feature"]
+    assert page.locator(".ut-mark-label").all_inner_texts() == ["fa:bug = bug", "circle = feature"]
+
+
 def test_an_icon_query_with_no_match_says_so(page):
     mount(page)
     page.evaluate("fake.playPython({icons: %r})" % ICONS)

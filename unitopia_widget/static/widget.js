@@ -2168,13 +2168,15 @@ function createMarkPanel(view) {
   );
   function item(layer, mark, k, n, entries) {
     const entry = entries.find((m) => m && m.layer === layer.name && (Number(m.mark) || 0) === k);
+    const key = Array.isArray(layer.mark_keys) && layer.mark_keys.length === n ? layer.mark_keys[k] : void 0;
+    const label = key === void 0 ? describeMark(mark) : `${describeMark(mark)} = ${key}`;
     const src = entry && typeof entry.src === "string" && entry.src.startsWith("data:image/") ? entry.src : null;
-    const btn = (act, label, text, fn, disabled) => h("button", { type: "button", class: "ut-btn ut-icon", dataset: { markAction: act }, title: label, "aria-label": label, disabled, onclick: fn }, text);
+    const btn = (act, label2, text, fn, disabled) => h("button", { type: "button", class: "ut-btn ut-icon", dataset: { markAction: act }, title: label2, "aria-label": label2, disabled, onclick: fn }, text);
     return h(
       "li",
       { class: "ut-mark", dataset: { mark: String(k), kind: String(mark && mark.kind) } },
       src ? h("img", { src, alt: `mark ${k + 1}`, draggable: false }) : h("span", { class: "ut-mark-empty", text: "?" }),
-      h("span", { class: "ut-mark-label", text: describeMark(mark), title: describeMark(mark) }),
+      h("span", { class: "ut-mark-label", text: label, title: label }),
       btn("up", "Move up", "↑", () => edit((d, i) => moveMark(d, i, k, -1)), k === 0),
       btn("down", "Move down", "↓", () => edit((d, i) => moveMark(d, i, k, 1)), k === n - 1),
       btn("remove", "Remove this mark", "✕", () => edit((d, i) => removeMark(d, i, k)), n <= 1)
@@ -2245,7 +2247,7 @@ function createLegend(view, signal) {
     const l = trait();
     const { visible, position } = legendSettings(view.design());
     toggle.setAttribute("aria-pressed", String(visible));
-    toggle.setAttribute("aria-disabled", String(!l));
+    toggle.setAttribute("aria-disabled", String(visible && !l));
     img.hidden = !l || !visible;
     if (!l) return void img.removeAttribute("src");
     if (img.getAttribute("src") !== l.src) img.src = l.src;

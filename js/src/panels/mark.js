@@ -42,12 +42,14 @@ export function createMarkPanel(view) {
 
   function item(layer, mark, k, n, entries) {
     const entry = entries.find((m) => m && m.layer === layer.name && (Number(m.mark) || 0) === k);
+    const key = Array.isArray(layer.mark_keys) && layer.mark_keys.length === n ? layer.mark_keys[k] : undefined;
+    const label = key === undefined ? describeMark(mark) : `${describeMark(mark)} = ${key}`; // the category it draws
     const src = entry && typeof entry.src === "string" && entry.src.startsWith("data:image/") ? entry.src : null;
     const btn = (act, label, text, fn, disabled) =>
       h("button", { type: "button", class: "ut-btn ut-icon", dataset: { markAction: act }, title: label, "aria-label": label, disabled, onclick: fn }, text);
     return h("li", { class: "ut-mark", dataset: { mark: String(k), kind: String(mark && mark.kind) } },
       src ? h("img", { src, alt: `mark ${k + 1}`, draggable: false }) : h("span", { class: "ut-mark-empty", text: "?" }),
-      h("span", { class: "ut-mark-label", text: describeMark(mark), title: describeMark(mark) }),
+      h("span", { class: "ut-mark-label", text: label, title: label }),
       btn("up", "Move up", "\u2191", () => edit((d, i) => moveMark(d, i, k, -1)), k === 0),
       btn("down", "Move down", "\u2193", () => edit((d, i) => moveMark(d, i, k, 1)), k === n - 1),
       btn("remove", "Remove this mark", "\u2715", () => edit((d, i) => removeMark(d, i, k)), n <= 1));
