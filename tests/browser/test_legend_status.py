@@ -4,7 +4,7 @@ stale, a full bar when done, errors that stay until dismissed, Run with no kerne
 from __future__ import annotations
 
 import pytest
-from test_frontend import ROOT, STAGE, drag, layer, mount, next_paint, push_layout, save_count
+from test_frontend import ROOT, STAGE, drag, layer, mount, next_paint, push_layout, save_count, wait_red_at
 
 pytestmark = pytest.mark.browser
 
@@ -132,8 +132,12 @@ def test_an_error_stays_until_dismissed(page):
 
 
 def test_run_without_a_kernel_says_so(page):
-    mount(page)
-    push_layout(page, [[200, 200, 0, 1]])  # a restored widget: the saved layout, no kernel
+    # A restored widget: the saved state holds the layout, and no kernel is behind it.
+    page.evaluate("""() => unitopia.mount(Object.assign(unitopia.defaultState(), {
+        units: unitopia.f32([[0, 0, 40, 40]]), colors: unitopia.u8([[200, 30, 30, 255]]),
+        frame: unitopia.f32([[200, 200, 0, 1]]), frame_count: 12, status: 'done'}))""")
+    page.wait_for_selector(ROOT)
+    wait_red_at(page, 200, 200)
     notice = page.locator('[data-role="notice"]')
     page.click('[data-action="run"]')
     assert notice.is_hidden()
