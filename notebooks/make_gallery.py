@@ -27,6 +27,7 @@ THUMBS = {
     "06-timeline": ["06-timeline.svg"],
     "07-storytelling": ["07-slide-1-jar.svg", "07-slide-2-piles.svg", "07-slide-3-timeline.svg"],
     "08-gallery": ["08-gallery.png"],
+    "09-mark-groups": ["09-mark-groups.svg", "09-mark-set.svg"],
 }
 
 

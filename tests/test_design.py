@@ -133,8 +133,11 @@ def test_a_blocking_layer_settles_on_top_of_the_one_it_blocks_on():
     assert d.min() > 0.9 * table["width"].iloc[0]
 
 
-def test_without_the_block_the_layers_ignore_each_other():
-    table = sediment_chart(blocks=False).layout()
+def test_layers_in_different_containers_ignore_each_other():
+    # (layers sharing one container collide both ways: tests/test_groups.py)
+    chart = sediment_chart(blocks=False)
+    chart.layer("b").set(container=uw.Container.ellipse(401, 250, 200, 200))
+    table = chart.layout()
     mean_y = table.groupby("layer")["y"].mean()
     assert abs(mean_y["a"] - mean_y["b"]) < 20          # both sink to the bottom, overlapping
 
@@ -176,7 +179,7 @@ def test_by_makes_one_layer_per_value_with_a_mark_dict():
     assert dict(zip(table["row"], table["layer"])) == dict(df["kind"])
     with pytest.raises(ValueError, match=r"mark: no mark for category 'lily'"):
         uw.Chart(df, by="kind", mark={"rose": "heart", "tulip": "drop"})
-    with pytest.raises(ValueError, match=r"needs by=<column>"):
+    with pytest.raises(ValueError, match=r"needs shape=<column> \(each row draws the mark of its category\) or by=<column>"):
         uw.Chart(df, mark={"rose": "heart"})
 
 

@@ -47,7 +47,7 @@ def href(el):
 # --- structure ----------------------------------------------------------------------
 
 def test_root_size_and_view_box(small_chart):
-    root = parse(small_chart.to_svg())
+    root = parse(small_chart.to_svg(legend=False))   # the legend grows the SVG (test_legend.py)
     assert root.tag == f"{SVG}svg"
     assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("800", "500", "0 0 800 500")
 
@@ -76,7 +76,7 @@ def test_each_unit_has_a_title_with_its_row_values(small_chart):
 
 
 def test_every_use_resolves_to_a_definition(small_chart):
-    root = parse(small_chart.to_svg())
+    root = parse(small_chart.to_svg(legend=False))   # the legend's own uses: test_legend.py
     defs = root.find("svg:defs", NS)
     ids = {el.get("id"): el for el in defs.iter() if el.get("id")}
     uses = [u for u in root.iter(f"{SVG}use")]
@@ -135,7 +135,7 @@ def test_save_svg_writes_the_same_text(small_chart, tmp_path):
 
 def test_png_export_renders_at_twice_the_canvas(small_chart, tmp_path):
     path = tmp_path / "c.png"
-    small_chart.save(path)
+    small_chart.save(path, legend=False)
     img = np.asarray(Image.open(path).convert("RGBA"))
     assert img.shape == (1000, 1600, 4)
     # the background is grey 200 everywhere a mark is not; marks add their colours
@@ -257,7 +257,7 @@ def stars_in_an_ellipse():
     df = pd.DataFrame({"v": np.random.default_rng(0).uniform(1, 3, 100)})
     chart = uw.Chart(df, mark="star", size="v", container=uw.Container.ellipse(400, 250, 300, 200))
     chart.layout()
-    return chart, chart.to_svg()
+    return chart, chart.to_svg(legend=False)
 
 
 def test_exported_layout_has_little_overlap_and_stays_inside(stars_in_an_ellipse):

@@ -320,7 +320,7 @@ def test_scripts_handlers_and_external_references_never_reach_the_export(tasks, 
     w.save(tmp_path / "chart.svg")
     assert_clean((tmp_path / "chart.svg").read_text())
     w.save(tmp_path / "design.json")
-    assert_clean(json.loads((tmp_path / "design.json").read_text())["layers"][0]["mark"]["svg"])
+    assert_clean(json.loads((tmp_path / "design.json").read_text())["layers"][0]["marks"][0]["svg"])
     for doc in widget_mark_svgs(w):
         assert_clean(doc)
 
@@ -383,7 +383,7 @@ def test_xml_bomb_is_refused_in_well_under_a_second(make, tasks):
 def test_xml_bomb_in_a_design_is_refused_fast(tasks):
     chart = uw.Chart(tasks, mark=CIRCLE)
     design = chart.design()
-    design["layers"][0]["mark"] = {"kind": "svg", "svg": (DATA / "billion_laughs.svg").read_text()}
+    design["layers"][0]["marks"] = [{"kind": "svg", "svg": (DATA / "billion_laughs.svg").read_text()}]
     before = json.dumps(chart.design())
     start = time.perf_counter()
     with pytest.raises(ValueError, match=r"entity"):
@@ -429,7 +429,7 @@ def test_a_design_only_holds_inline_data_never_file_paths(tasks, tmp_path):
     chart = uw.Chart(tasks, mark=CIRCLE)
     before = json.dumps(chart.design())
     cases = [
-        (("layers", 0, "mark"), {"kind": "svg", "svg": str(svg_file)}, r"svg mark must hold SVG text"),
+        (("layers", 0, "marks", 0), {"kind": "svg", "svg": str(svg_file)}, r"svg mark must hold SVG text"),
         (("layers", 0, "container"), {"kind": "image", "image": str(secret)},
          r"image container must hold a data:image/png"),
         (("background",), {"image": str(secret)}, r"background must be null or \{\"image\": "
@@ -450,11 +450,11 @@ def test_a_design_only_holds_inline_data_never_file_paths(tasks, tmp_path):
 def test_front_end_edits_with_hostile_svg_are_sanitised(tasks):
     w = uw.UnitoPia(tasks, mark=CIRCLE)
     design = copy.deepcopy(w.design)
-    design["layers"][0]["mark"] = {"kind": "svg", "svg": (DATA / "hostile.svg").read_text()}
+    design["layers"][0]["marks"] = [{"kind": "svg", "svg": (DATA / "hostile.svg").read_text()}]
     w.design = design                                  # as the front end would
     assert w.error == ""
     assert w.layers[0].mark.kind == "svg"
-    assert_clean(w.design["layers"][0]["mark"]["svg"])
+    assert_clean(w.design["layers"][0]["marks"][0]["svg"])
     for doc in widget_mark_svgs(w):
         assert_clean(doc)
 
@@ -564,7 +564,7 @@ def corrupt_files(good: str) -> dict:
     bad_layer = json.loads(good)
     bad_layer["layers"][0]["boundary"] = "leaky"
     no_mark = json.loads(good)
-    del no_mark["layers"][0]["mark"]
+    del no_mark["layers"][0]["marks"]
     return {
         "truncated": (good[: len(good) // 2], r"is not valid JSON"),
         "empty": ("", r"is not valid JSON"),
@@ -572,9 +572,9 @@ def corrupt_files(good: str) -> dict:
         "list": ("[1, 2, 3]", r"not a unitopia design"),
         "other-schema": ('{"schema": "vega", "version": 1}', r"not a unitopia design"),
         "newer": (json.dumps(newer), r"version 99 is newer than this unitopia-widget reads "
-                                     r"\(up to 1\); upgrade"),
+                                     r"\(up to 2\); upgrade"),
         "bad-field": (json.dumps(bad_layer), r"boundary must be one of 'closed', 'open'; got 'leaky'"),
-        "no-mark": (json.dumps(no_mark), r"design layer .*missing 'mark'"),
+        "no-mark": (json.dumps(no_mark), r"design layer .*missing 'marks'"),
         "deep": ("[" * 100_000 + "]" * 100_000, r"is not valid JSON|not a unitopia design"),
     }
 

@@ -186,7 +186,7 @@ def test_stop_keeps_the_last_frame_as_the_layout(df):
     w.stop()
     assert not w._runner.running
     assert w._chart.result.cancelled and w._chart.result.iterations < 5000
-    assert w.status == "done" and len(w.placements) == len(df)
+    assert w.status == "stopped" and len(w.placements) == len(df)   # stopped, not converged
     assert_frame_is_layout(w)
     assert w.to_svg().count('class="unit"') == len(df)
     w.stop()                                          # stopping when idle is harmless
@@ -198,7 +198,7 @@ def test_stop_message_from_the_front_end(df):
     w._on_message(w, {"type": "run"}, [])
     poll(lambda: w.frame_count >= 2)
     w._on_message(w, {"type": "stop"}, [])
-    poll(lambda: w.status == "done" and not w._runner.running)
+    poll(lambda: w.status == "stopped" and not w._runner.running)
     assert w._chart.result.cancelled
     assert_frame_is_layout(w)
 
@@ -294,11 +294,11 @@ def test_a_front_end_edit_while_running_does_not_lose_the_design(df):
     w.run()
     poll(lambda: w.frame_count >= 1)
     design = copy.deepcopy(w.design)
-    design["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
+    design["layers"][0]["marks"] = [{"kind": "shape", "name": "star"}]
     w.design = design
     w.stop()
     assert w.error == "" and w.layer(0).mark.kind == "shape"
-    assert w.design["layers"][0]["mark"] == {"kind": "shape", "name": "star"}
+    assert w.design["layers"][0]["marks"] == [{"kind": "shape", "name": "star"}]
     w.run(wait=True)
     assert w.status == "done"
     assert_frame_is_layout(w)

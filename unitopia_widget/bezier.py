@@ -86,6 +86,10 @@ def fit_bezier(stroke: np.ndarray, tolerance: float = 4.0, max_depth: int = 12) 
     pts = np.asarray(stroke, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
         raise ValueError(f"stroke must be an (m, 2) array with m >= 2 points, got shape {pts.shape}")
+    if not np.isfinite(pts).all():
+        k = int(np.nonzero(~np.isfinite(pts).all(axis=1))[0][0])
+        raise ValueError(f"stroke: point {k} is {pts[k].tolist()}, not finite; every point of a "
+                         f"stroke must be a pair of finite numbers")
     keep = np.concatenate([[True], np.linalg.norm(np.diff(pts, axis=0), axis=1) > 1e-9])
     pts = pts[keep]
     if len(pts) < 2:

@@ -18,16 +18,19 @@ import pandas as pd
 
 from . import engine
 from .encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
-from .export import to_png, to_svg
+from .export import to_png
+from .publish import PageOptions, export_svg
 from .images import image_data_url, load_image
-from .scene import SCHEMA, VERSION, Layer, _mark, block_order, check_design_header
+from .scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
+                    check_design_header, is_category_dict)
 from .validate import check_finite, closest
 
-ARGUMENTS = ("mark", "size", "width", "height", "color", "by", "margin", "order", "container",
+ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
-             "background", "seed", "device", "iterations", "dropna")
+             "background", "seed", "device", "iterations", "dropna", "title", "caption", "legend")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
+MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -58,20 +61,24 @@ class Chart:
         self.canvas = _canvas(opts.pop("canvas", (800, 500)))
         self.background = _background(opts.pop("background", None))
         self.seed = _seed(opts.pop("seed", 0))
+        self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
+                                True if opts.get("legend") is None else opts["legend"])
+        opts.pop("legend", None)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
-        mark = opts.pop("mark", "circle")
-        if not _is_category_dict(mark):
-            mark = _mark(mark)   # one Mark for every layer: its renders are cached once
-        if by is not None:
-            engine.check_column(df, "by", by)
-        missing_by = df[by].isna().to_numpy() if by is not None else np.zeros(len(df), bool)
+        mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
+        shape = opts.get("shape")
+        categories = {c: v for c, v in (("by", by), ("shape", shape)) if v is not None}
+        missing_by = np.zeros(len(df), bool)
+        for channel, column in categories.items():
+            engine.check_column(df, channel, column)
+            missing_by |= df[column].isna().to_numpy()
         if opts.pop("dropna", False):
             bad = invalid_rows(df, opts) | missing_by
             if bad.any():
                 bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS
                          if isinstance(opts.get(c), str) and opts[c] in df.columns]
-                bound += [f"by={by!r}"] if missing_by.any() else []
+                bound += [f"{c}={v!r}" for c, v in categories.items() if df[v].isna().any()]
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
                               f"values are missing, infinite or out of range in "
                               f"{', '.join(bound)}", stacklevel=3)
@@ -79,15 +86,17 @@ class Chart:
                 if len(df) == 0:
                     raise ValueError("dropna=True dropped every row")
         elif missing_by.any():
-            raise ValueError(f"by={by!r}: {int(missing_by.sum())} of {len(df)} rows are missing; "
-                             f"fill them (df[{by!r}].fillna(...)) or pass dropna=True to drop them")
+            channel, column = next((c, v) for c, v in categories.items() if df[v].isna().any())
+            raise ValueError(f"{channel}={column!r}: {int(df[column].isna().sum())} of {len(df)} "
+                             f"rows are missing; fill them (df[{column!r}].fillna(...)) or pass "
+                             f"dropna=True to drop them")
         self.df = df
         self.layers: list[Layer] = []
         self.placements: pd.DataFrame | None = None
         self.result = None
         self._units = None
         if by is None:
-            self.add_layer("layer-1", mark=_pick_mark(mark, None), **opts)
+            self.add_layer("layer-1", mark=_pick_mark(mark, None, shape), **opts)
         else:
             try:
                 values = pd.unique(df[by])
@@ -103,7 +112,8 @@ class Chart:
             except TypeError:
                 pass
             for v in values:
-                self.add_layer(str(v), mark=_pick_mark(mark, v), rows=_rows_of(df, by, v), **opts)
+                self.add_layer(str(v), mark=_pick_mark(mark, v, shape), rows=_rows_of(df, by, v),
+                               **opts)
         self.bind_check()
 
     # --- layers -------------------------------------------------------------
@@ -197,11 +207,19 @@ class Chart:
                                  f"wide a range: the largest mark would be more than {MAX_SPREAD:g} "
                                  f"times the smallest (or overflow); clip, rescale or log-transform "
                                  f"the column")
-        for layer in layers:
-            if layer.container is not None and not layer.container.area(canvas) > 0:
+        for i, layer in enumerate(layers):
+            if layer.container is None:
+                continue
+            area = layer.container.area(canvas)
+            if not area > 0:
                 raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} has no "
                                  f"area inside the {canvas[0]:g} x {canvas[1]:g} canvas; move it "
                                  f"onto the canvas")
+            count = int((units.layer == i).sum())
+            if area < MIN_MARK_AREA * count:
+                raise ValueError(f"layer {layer.name!r}: its container {layer.container!r} holds "
+                                 f"{area:.3g} px^2 for {count} marks, so each mark would be under "
+                                 f"{MIN_MARK_AREA ** 0.5:g} px across; make the container larger")
         return units
 
     # --- layout -------------------------------------------------------------
@@ -220,29 +238,66 @@ class Chart:
         units = self._units if units is None else units
         return row_titles(self.df.loc[units.rows])
 
-    def to_svg(self) -> str:
-        """The laid-out chart as SVG text (run the layout first)."""
+    # --- title, caption, legend ------------------------------------------------------
+    title = property(lambda self: self.page.title, doc="The chart's title (None: none).")
+    caption = property(lambda self: self.page.caption, doc="The caption under the chart.")
+    legend = property(lambda self: dict(self.page.legend),
+                      doc='{"visible": bool, "position": "right" | "bottom" | "left" | "top" | [x, y]}')
+
+    @title.setter
+    def title(self, value):
+        self._set_page(title=value)
+
+    @caption.setter
+    def caption(self, value):
+        self._set_page(caption=value)
+
+    @legend.setter
+    def legend(self, value):
+        self._set_page(legend=value)
+
+    def _set_page(self, **change) -> None:
+        d = {**self.page.to_json(), **change}
+        self.page = PageOptions(d["title"], d["caption"], d["legend"])
+        self._changed()
+
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+        """The laid-out chart as SVG text (run the layout first).
+
+        ``legend``: None (the chart's setting: shown when a channel is bound), True,
+        False, or a position ("right", "bottom", "left", "top", [x, y] canvas px);
+        ``title``/``caption``: text drawn above/below (None: the chart's, "" none);
+        ``outline``: draw each layer's container as ``<path class="container">``.
+        The size legend is area-true at the layout's scale; layers bound to the same
+        size column share one size legend, which says so."""
         if self.placements is None:
             raise RuntimeError("no layout yet: call run() (or run(wait=True)) first")
         gone = sorted(set(self.placements["layer"]) - {layer.name for layer in self.layers})
         if gone:
             raise RuntimeError(f"the layout is out of date: layer(s) {gone} were renamed or "
                                f"removed since it was made; run the layout again")
+        stale = sorted({name for name, k in zip(self.placements["layer"], self.placements["mark"])
+                        if k >= len(self.layer(name).marks)})
+        if stale:
+            raise RuntimeError(f"the layout is out of date: layer(s) {stale} now draw fewer marks "
+                               f"than when it was made; run the layout again")
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
-        svg = to_svg(self.canvas, self.placements, self.layers, units.colors,
-                     self.titles(units), self.background)
+        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
-    def save(self, path) -> None:
-        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design)."""
+    def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
+        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design).
+        ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
+        if ext in (".svg", ".png"):
+            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
         if ext == ".svg":
-            _atomic_write(path, self.to_svg().encode())
+            _atomic_write(path, svg.encode())
         elif ext == ".png":
-            _atomic_write(path, to_png(self.to_svg(), self.canvas, 2.0))
+            _atomic_write(path, to_png(svg, svg_size(svg), 2.0))
         elif ext == ".json":
             _atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:
@@ -252,7 +307,8 @@ class Chart:
         """The design JSON (docs/protocol.md)."""
         return {"schema": SCHEMA, "version": VERSION, "canvas": list(self.canvas),
                 "background": None if self.background is None else {"image": self.background},
-                "seed": self.seed, "layers": [layer.to_json() for layer in self.layers]}
+                "seed": self.seed, **self.page.to_json(),
+                "layers": [layer.to_json() for layer in self.layers]}
 
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
@@ -265,6 +321,10 @@ class Chart:
             raise ValueError(f"design: background must be null or {{\"image\": \"data:image/png;"
                              f"base64,...\"}}; got {background!r:.60}")
         background = _background(background["image"]) if background else None
+        try:
+            page = PageOptions.from_json(d)
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"design: {exc}") from None
         if len(d["layers"]) > MAX_LAYERS:
             raise ValueError(f"design: {len(d['layers'])} layers, more than the {MAX_LAYERS} "
                              f"this widget lays out")
@@ -285,8 +345,15 @@ class Chart:
         for layer in layers:
             layer._on_change = self._layer_changed
         self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
+        self.page = page
         self._units = units
         self._changed()
+
+
+def svg_size(svg: str) -> tuple[float, float]:
+    """(width, height) of the root of an exported SVG."""
+    m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
+    return float(m.group(1)), float(m.group(2))
 
 
 def load_design(path) -> dict:
@@ -320,11 +387,6 @@ def _atomic_write(path: str, data: bytes) -> None:
         raise
 
 
-def _is_category_dict(mark) -> bool:
-    """True for ``{category: mark spec}``, False for a mark dict such as ``{"kind": "shape", ...}``."""
-    return isinstance(mark, dict) and not ("kind" in mark and isinstance(mark.get("kind"), str))
-
-
 def _rows_of(df: pd.DataFrame, by, value) -> dict:
     """The rows spec of the layer of ``df[by] == value``, JSON-safe for the design file:
     the value as a plain str/int/float/bool when that selects the same rows, else the index."""
@@ -341,10 +403,24 @@ def _seed(seed) -> int:
     return int(seed)
 
 
-def _pick_mark(mark, value):
-    if _is_category_dict(mark):
+def _parse_marks(mark):
+    """``mark=`` with every spec made a Mark (the same structure: one, a list or a dict)."""
+    if is_category_dict(mark):
+        return {k: _parse_marks(v) for k, v in mark.items()}
+    if isinstance(mark, (list, tuple)):
+        if len(mark) > MAX_MARKS:
+            _mark_set(mark)   # raises: too many marks
+        return [_parse_marks(m) if isinstance(m, (list, tuple, dict)) else _mark(m) for m in mark]
+    return _mark(mark)
+
+
+def _pick_mark(mark, value, shape):
+    """The ``mark=`` of the layer for by= ``value``: with ``shape=`` every layer takes the
+    whole group; without, a ``{category: mark}`` dict picks the by= category's mark(s)."""
+    if is_category_dict(mark) and shape is None:
         if value is None:
-            raise ValueError("mark is a dict of category -> mark, which needs by=<column>")
+            raise ValueError("mark is a dict of category -> mark, which needs shape=<column> "
+                             "(each row draws the mark of its category) or by=<column>")
         if value not in mark and str(value) not in mark:
             raise ValueError(f"mark: no mark for category {value!r}; the dict has "
                              f"{list(mark)}")

@@ -121,7 +121,13 @@ def _order(df, column) -> np.ndarray:
         return np.arange(n)
     check_column(df, "order", column)
     ranks = np.empty(n, dtype=np.int64)
-    ranks[np.argsort(df[column].to_numpy(), kind="stable")] = np.arange(n)
+    try:
+        ranks[np.argsort(df[column].to_numpy(), kind="stable")] = np.arange(n)
+    except TypeError:
+        kinds = sorted({type(v).__name__ for v in df[column]})
+        raise TypeError(f"order={column!r}: the column's values cannot be put in order (they are "
+                        f"{', '.join(kinds)}); bind order to a column of numbers, dates or text"
+                        ) from None
     return ranks
 
 
@@ -150,8 +156,19 @@ def _colors(df, color, palette, domain=None) -> list[str]:
     series = df[color]
     if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
         return sequential(series.to_numpy(dtype=float, na_value=np.nan), domain)
-    palette = palette if palette is not None else palette_for(series)
-    return [palette.get(v, DEFAULT_COLOR) for v in series]
+    try:
+        palette = palette if palette is not None else palette_for(series)
+        return [palette.get(v, DEFAULT_COLOR) for v in series]
+    except TypeError:
+        raise unhashable("color", color, series) from None
+
+
+def unhashable(channel: str, column, series) -> TypeError:
+    """The error for a categorical channel bound to a column of unhashable values."""
+    kinds = sorted({type(v).__name__ for v in series})
+    return TypeError(f"{channel}={column!r}: the column's values must be categories (text, "
+                     f"numbers, ...) to pick colours from, got {', '.join(kinds)}; bind "
+                     f"{channel} to another column, or convert this one (e.g. .astype(str))")
 
 
 def sequential(values: np.ndarray, domain=None) -> list[str]:

@@ -2,8 +2,11 @@
 
 ``bind`` encodes every layer's rows into ``Units`` (one per row, layers
 concatenated in drawing order). ``build_problem`` turns units, layers and the
-canvas into the solver's ``Problem``: sprites, raster, fields, starting
-positions from the emitters, the global scale. ``layout`` runs the solver and
+canvas into the solver's ``Problem``: one sprite pyramid per distinct mark
+(a layer may draw a group of marks, packed jointly), raster, fields, blocks
+(one-way from ``layer.blocks``; two-way between layers that share a container
+and do not block each other), starting positions from the emitters, the
+global scale. ``layout`` runs the solver and
 returns the placements table.
 """
 from __future__ import annotations
@@ -15,7 +18,9 @@ import numpy as np
 import pandas as pd
 import torch
 
-from .encodings import Encoded, check_column, encode, palette_for
+from .atlas import SpriteAtlas
+from .encodings import Encoded, check_column, encode, palette_for, unhashable
+from .groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, sprite_pyramid
@@ -40,6 +45,19 @@ class Units:
     margin: np.ndarray       # margin fraction
     order: np.ndarray        # emission rank within the layer
     colors: list             # CSS hex colour per unit
+    mark: np.ndarray         # index of the unit's mark within its layer's marks
+    sprite: np.ndarray       # index of the unit's mark in ``sprites``
+    sprites: list            # the distinct Marks drawn, one sprite pyramid each
+
+    @property
+    def fill_fraction(self) -> np.ndarray:
+        """``(N,)`` silhouette area / box area of each unit's mark."""
+        return np.array([m.fill_fraction for m in self.sprites])[self.sprite]
+
+    @property
+    def box_size(self) -> np.ndarray:
+        """``(N, 2)`` box (w, h) of each unit's mark, in the mark's own units."""
+        return np.array([m.box_size for m in self.sprites]).reshape(-1, 2)[self.sprite]
 
 
 def layer_rows(df: pd.DataFrame, layer) -> pd.DataFrame:
@@ -61,11 +79,16 @@ def bind(df: pd.DataFrame, layers) -> Units:
     """Encode all layers. Raises ValueError for empty layers or bad bindings."""
     color_cols = {layer.encodings["color"] for layer in layers
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
-    palettes = {c: palette_for(df[c]) for c in color_cols
-                if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c])}
+    palettes = {}
+    for c in color_cols:
+        if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c]):
+            try:
+                palettes[c] = palette_for(df[c])
+            except TypeError:
+                raise unhashable("color", c, df[c]) from None
     # numeric colours: one scale per column, shared by the layers (as the palettes are)
     domains = {c: _finite_range(df[c]) for c in color_cols if c not in palettes}
-    parts, rows = [], []
+    parts, rows, sprites = [], [], {}
     for i, layer in enumerate(layers):
         sub = layer_rows(df, layer)
         if len(sub) == 0:
@@ -78,17 +101,21 @@ def bind(df: pd.DataFrame, layers) -> Units:
             if e[channel] is not None:   # encode normalises per layer; keep layers comparable
                 column = sub[e[channel]].to_numpy(dtype=float)
                 setattr(enc, attr, getattr(enc, attr) * column.mean() / _positive_mean(df[e[channel]]))
-        mark = layer.mark
+        choice = mark_choice(df, sub, layer)
+        sprite = np.array([sprites.setdefault(m, len(sprites)) for m in layer.marks])[choice]
+        aspect = np.array([m.aspect for m in layer.marks])[choice]
+        fill = np.array([m.fill_fraction for m in layer.marks])[choice]
         # the box whose silhouette has area enc.area: h0 * (aspect * h0) * fill_fraction = area
-        h0 = np.sqrt(enc.area / (mark.aspect * mark.fill_fraction))
-        parts.append((i, h0 * mark.aspect * enc.width / 2, h0 * enc.height / 2, enc))
+        h0 = np.sqrt(enc.area / (aspect * fill))
+        parts.append((i, h0 * aspect * enc.width / 2, h0 * enc.height / 2, enc, choice, sprite))
         rows.extend(sub.index.tolist())
     cat = lambda f: np.concatenate([f(p) for p in parts])  # noqa: E731
     return Units(rows=rows, layer=cat(lambda p: np.full(len(p[3].area), p[0])),
                  half_w=cat(lambda p: p[1]), half_h=cat(lambda p: p[2]),
                  area=cat(lambda p: p[3].area * p[3].width * p[3].height),
                  margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
-                 colors=[c for p in parts for c in p[3].colors])
+                 colors=[c for p in parts for c in p[3].colors],
+                 mark=cat(lambda p: p[4]), sprite=cat(lambda p: p[5]), sprites=list(sprites))
 
 
 def _positive_mean(series: pd.Series) -> float:
@@ -135,7 +162,7 @@ def initial_scale(units: Units, layers, canvas) -> tuple[float, bool]:
             fixed.append(math.sqrt(fill * area / sharing))
         else:
             # start loose: compact marks at 75% coverage, spiky ones (stars) lower
-            start = min(max(0.75 * layer.mark.fill_fraction / 0.785, 0.35), 0.75)
+            start = min(max(0.75 * units.fill_fraction[units.layer == i].mean() / 0.785, 0.35), 0.75)
             free.append(math.sqrt(start * area / sharing))
     for i, layer in enumerate(layers):
         emitter = layer.emitter
@@ -168,6 +195,11 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         for b in layers[a].blocks:
             blocks[a, names.index(b)] = 1.0
             blocks[a] = torch.maximum(blocks[a], blocks[names.index(b)])
+    # layers that share a container and do not block each other collide both ways
+    for a in range(len(layers)):
+        for b in range(a + 1, len(layers)):
+            if layers[a].region == layers[b].region and not (blocks[a, b] or blocks[b, a]):
+                blocks[a, b] = blocks[b, a] = 1.0
     norm = float((units.area * (1 + 2 * units.margin) ** 2).sum()) * (scale * rho) ** 2
     terms = CanvasTerms(
         penalty=torch.stack([f[2] for f in fields]).to(dev),
@@ -180,9 +212,9 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
-    pyramids = []
-    for layer in layers:
-        alpha = layer.mark.silhouette(SPRITE_SIDE)
+    pyramids = []   # one per distinct mark: a layer's units may draw different marks
+    for mark in units.sprites:
+        alpha = mark.silhouette(SPRITE_SIDE)
         pyramids.append(sprite_pyramid(alpha, dev, keep_thin=is_thin(alpha)))
     cap = max_iterations or max(layer.iterations for layer in layers)
     # layers emitted on top of the layers they block on are poured in turn
@@ -190,8 +222,11 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     for i in order:
         emitted = layers[i].emitter is not None
         depth[i] = max([depth[names.index(b)] + 1 for b in layers[i].blocks], default=0) if emitted else 0
-    return Problem(grid=grid, pyramids=pyramids, sprite_sides=[SPRITE_SIDE] * len(layers),
-                   sprite=units.layer, layer=units.layer, half_w=units.half_w,
+    sides = [SPRITE_SIDE] * len(pyramids)
+    if len(pyramids) > 1:   # one texture for all marks: the cost does not grow with their number
+        pyramids = SpriteAtlas(pyramids)
+    return Problem(grid=grid, pyramids=pyramids, sprite_sides=sides,
+                   sprite=units.sprite, layer=units.layer, half_w=units.half_w,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
@@ -206,14 +241,15 @@ def _fields(container, grid: RasterGrid, falloff: float):
     return tuple(torch.from_numpy(a).reshape(-1) for a in (inside, outside, penalty))
 
 
-def placements(units: Units, layers, result: Result, marks) -> pd.DataFrame:
-    """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height)."""
+def placements(units: Units, layers, result: Result) -> pd.DataFrame:
+    """The layout table: one row per unit (row, layer, mark, x, y, angle, sx, sy, width,
+    height); ``mark`` indexes the layer's marks."""
     names = np.array([layer.name for layer in layers], dtype=object)
     width = 2 * units.half_w * result.scale
     height = 2 * units.half_h * result.scale
-    box = np.array([marks[i].box_size for i in units.layer])
+    box = units.box_size
     return pd.DataFrame({
-        "row": units.rows, "layer": names[units.layer],
+        "row": units.rows, "layer": names[units.layer], "mark": units.mark,
         "x": result.center[:, 0], "y": result.center[:, 1], "angle": result.angle,
         "sx": width / box[:, 0], "sy": height / box[:, 1], "width": width, "height": height,
     })
@@ -226,5 +262,5 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     problem = build_problem(units, layers, canvas, seed, pick_device(device))
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every)
-    table = placements(units, layers, result, [layer.mark for layer in layers])
+    table = placements(units, layers, result)
     return units, result, table

@@ -1,9 +1,10 @@
 """SVG and PNG export of a laid-out chart (DESIGN.md section 2, "SVG export").
 
 Structure: a root ``<svg width=W height=H viewBox="0 0 W H">``; the background,
-if any, as ``<image class="background">``; one definition per (layer mark,
-colour) in ``<defs>``; one ``<g class="unit" data-row data-layer transform>``
-per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
+if any, as ``<image class="background">``; a comment crediting the icons'
+licence when Font Awesome icons are drawn; one definition per (layer, mark of
+the layer, colour) in ``<defs>``, each mark keeping its own vector design; one
+``<g class="unit" data-row data-layer transform>`` per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
 definition. The unit transform maps the mark's box onto its placement:
 ``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``.
 """
@@ -17,49 +18,64 @@ from PIL import Image
 
 from .svgsafe import SVG_NS
 
+ICON_CREDIT = ("<!-- Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0, "
+               "https://fontawesome.com/license/free -->")
+
 
 def _n(v: float) -> str:
     s = f"{float(v):.3f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
 
 
-def to_svg(canvas, table, layers, colors, titles, background: str | None = None) -> str:
+def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
+           page=None, under: str = "") -> str:
     """The chart as SVG text.
 
-    ``table``: the placements DataFrame (one row per unit, layer order);
+    ``table``: the placements DataFrame (one row per unit, layer order; its ``mark``
+    column indexes each layer's marks);
     ``colors``: CSS colour per unit; ``titles``: tooltip text per unit;
-    ``background``: a PNG data URL or None.
+    ``background``: a PNG data URL or None; ``page``: a ``page.Page`` (the viewBox
+    around the canvas and the legend, title and caption drawn over it) or None;
+    ``under``: SVG drawn between the background and the units (container outlines).
     """
     w, h = canvas
+    vx, vy, vw, vh = page.view if page is not None else (0, 0, w, h)
     out = [f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" '
-           f'width="{_n(w)}" height="{_n(h)}" viewBox="0 0 {_n(w)} {_n(h)}">']
+           f'width="{_n(vw)}" height="{_n(vh)}" viewBox="{_n(vx)} {_n(vy)} {_n(vw)} {_n(vh)}">']
     if background:
         out.append(f'<image class="background" x="0" y="0" width="{_n(w)}" height="{_n(h)}" '
                    f'preserveAspectRatio="none" href={quoteattr(background)}/>')
+    if under:
+        out.append(under)
     by_name = {layer.name: (i, layer) for i, layer in enumerate(layers)}
     defs, ids = [], {}
-    for name, color in zip(table["layer"], colors):
-        if (name, color) not in ids:
-            i, layer = by_name[name]
+    keys = list(zip(table["layer"], table["mark"], colors))
+    for key in keys:
+        if key not in ids:
+            i, layer = by_name[key[0]]
             def_id = f"u{i}m{len(ids)}"
-            ids[(name, color)] = def_id
-            defs.append(layer.mark.svg_fragment(def_id, color))
+            ids[key] = def_id
+            defs.append(layer.marks[key[1]].svg_fragment(def_id, key[2]))
+    if any(by_name[name][1].marks[k].kind == "icon" for name, k, _ in ids):
+        out.append(ICON_CREDIT)   # the artwork's licence asks for attribution
     out.append("<defs>" + "".join(defs) + "</defs>")
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
     for k, (row, name) in enumerate(zip(table["row"], table["layer"])):
         x, y, a, sx, sy = cols[k]
-        bw, bh = by_name[name][1].mark.box_size
+        bw, bh = by_name[name][1].marks[keys[k][1]].box_size
         transform = (f"translate({_n(x)} {_n(y)}) rotate({_n(a)}) scale({sx:.6g} {sy:.6g}) "
                      f"translate({_n(-bw / 2)} {_n(-bh / 2)})")
         out.append(f'<g class="unit" data-row={quoteattr(str(row))} data-layer={quoteattr(name)} '
                    f'transform="{transform}"><title>{escape(titles[k])}</title>'
-                   f'<use href="#{ids[(name, colors[k])]}"/></g>')
+                   f'<use href="#{ids[keys[k]]}"/></g>')
+    if page is not None and page.overlay:
+        out.append(page.overlay)
     out.append("</svg>")
     return "\n".join(out)
 
 
 def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:
-    """PNG bytes of ``svg`` rendered at ``scale`` x the canvas size (resvg)."""
+    """PNG bytes of ``svg`` rendered at ``scale`` x ``canvas`` (the SVG's width, height) (resvg)."""
     import resvg_py
 
     w, h = canvas

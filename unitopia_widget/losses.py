@@ -3,7 +3,8 @@
 Every layer has its own coverage slab ``C[a]`` (the sum of its marks' footprint
 alphas per raster pixel). A layer ``a`` that blocks on layers ``b`` sees their
 coverage as obstacles ``O[a] = sum_b C[b]`` with gradients stopped: one-way
-blocking (paper section 4.1.2). With ``T = C + O``, per raster pixel:
+blocking (paper section 4.1.2). Layers that share a container and do not
+block each other see each other both ways, so they collide as one layer. With ``T = C + O``, per raster pixel:
 
 * overlap     ``relu(T - 1)``                 (paper eq. 3 with tau = 1 on coverage)
 * containment ``alpha * field``               (a signed-distance penalty, eq. 4 improved)

@@ -4,8 +4,9 @@ A mark has a *box*, the tight bounding box of its visible content, of size
 ``box_size = (w, h)`` in the mark's own user units (SVG user units for vector
 marks, pixels for raster marks). Silhouettes are float32 ``(h, w)`` alpha
 images of exactly that box; fragments draw it over ``(0, 0)-(w, h)``.
-Kinds: ``shape`` (built-in path), ``svg`` (sanitised icon), ``image`` (raster
-with alpha) and ``sketch`` (round-capped polylines).
+Kinds: ``shape`` (built-in path), ``svg`` (sanitised icon), ``icon`` (a Font
+Awesome icon by name, see ``icons``), ``image`` (raster with alpha) and
+``sketch`` (round-capped polylines).
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 from PIL import Image
 
-from . import images, svgsafe
+from . import icons, images, svgsafe
 
 DEFAULT_COLOR = "#4e79a7"
 FILL_FRACTION_SIDE = 512
@@ -181,8 +182,9 @@ def _spec_error(spec) -> ValueError:
         hint = f" (did you mean {close[0]!r}?)" if close else ""
     return ValueError(
         f"unknown mark spec {text}{hint}: expected a Mark, a shape name "
-        f"({', '.join(SHAPES)}), SVG text, a path ending in .svg, .png, .jpg or .jpeg, "
-        "a numpy array, a PIL image, or a mark dict with kind shape, svg, image or sketch")
+        f"({', '.join(SHAPES)}), an icon name such as 'fa:apple-whole', SVG text, a path "
+        "ending in .svg, .png, .jpg or .jpeg, a numpy array, a PIL image, or a mark dict "
+        "with kind shape, svg, icon, image or sketch")
 
 
 class Mark:
@@ -230,6 +232,13 @@ class Mark:
         root = svgsafe.parse_svg(text)
         box = _content_box(root)
         return cls("svg", {"kind": "svg", "svg": svgsafe.serialize(root)}, root=root, box=box)
+
+    @classmethod
+    def icon(cls, name: str) -> "Mark":
+        """A Font Awesome Free icon by name, ``"fa:apple-whole"`` (see ``icons``)."""
+        if not icons.is_icon_name(name):
+            raise _spec_error(name)
+        return _icon(name)
 
     @classmethod
     def image(cls, source, key: str | None = "auto", tolerance: float = 0.1) -> "Mark":
@@ -293,6 +302,8 @@ class Mark:
             return cls.image(spec)
         if isinstance(spec, str) and spec in SHAPES:
             return cls.shape(spec)
+        if icons.is_icon_name(spec):
+            return cls.icon(spec)
         if isinstance(spec, str) and spec.lstrip("\ufeff \t\r\n").startswith("<"):
             return cls.svg(spec)
         if isinstance(spec, (str, os.PathLike)):
@@ -312,6 +323,8 @@ class Mark:
                 return cls.shape(d["name"])
             if kind == "svg":
                 return cls.svg(d["svg"])
+            if kind == "icon":
+                return cls.icon(d["name"])
             if kind == "image":
                 return cls.image(images.decode_data_url(d["image"]), key=None)
             if kind == "sketch":
@@ -404,5 +417,12 @@ class Mark:
         return self._hash
 
     def __repr__(self):
-        name = f" {self._json['name']!r}" if self.kind == "shape" else ""
+        name = f" {self._json['name']!r}" if self.kind in ("shape", "icon") else ""
         return f"<Mark {self.kind}{name} aspect={self.aspect:.3g}>"
+
+
+@functools.lru_cache(maxsize=256)
+def _icon(name: str) -> Mark:
+    """The icon mark of ``name``, parsed and measured once per name (marks are immutable)."""
+    root = svgsafe.parse_svg(icons.read_svg(name))
+    return Mark("icon", {"kind": "icon", "name": name}, root=root, box=_content_box(root))

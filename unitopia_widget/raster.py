@@ -143,13 +143,18 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
 
     ``center``: ``(N, 2)`` canvas px; ``angle``: ``(N,)`` radians;
     ``half_w``, ``half_h``: ``(N,)`` canvas px. All may carry gradients.
+    ``pyramids`` is a list of sprite pyramids or a ``SpriteAtlas`` of them (then
+    groups that differ only in their sprite render in one call).
     Returns ``values (M,)`` (alpha, differentiable), ``index (M,)`` (flat
     raster index, long) and ``owner (M,)`` (the mark of each sample, long).
     """
+    from .atlas import SpriteAtlas
+
     rho, pad = grid.rho, grid.pad
     height, width = grid.shape
     values, indices, owners = [], [], []
-    for idx_np, sprite_id, level, ph, pw in groups:
+    atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
+    for idx_np, sprite_id, level, ph, pw in (atlas.merge(groups) if atlas else groups):
         idx = torch.as_tensor(idx_np, device=center.device)
         c = center[idx] * rho + pad                                     # (n, 2) raster px
         a = angle[idx]
@@ -166,9 +171,11 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
         sy = (rho * half_h[idx])[:, None, None]
         gx = (cos * dx + sin * dy) / sx                                    # (n, ph, pw) sprite x in [-1, 1]
         gy = (cos * dy - sin * dx) / sy
-        sample_grid = torch.stack([gx, gy], dim=-1).reshape(1, -1, pw, 2)  # (1, n*ph, pw, 2)
-        sprite = pyramids[sprite_id][level]
-        alpha = F.grid_sample(sprite, sample_grid, mode="bilinear",
+        if atlas is None:
+            sprite, sample_grid = pyramids[sprite_id][level], torch.stack([gx, gy], dim=-1)
+        else:   # sprite_id: (n,) the sprite of each mark, tiles of one texture
+            sprite, sample_grid = atlas.grid(level, sprite_id, gx, gy)
+        alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
         o = origin.long()
         rows = o[:, 1, None] + torch.arange(ph, device=c.device)              # (n, ph)

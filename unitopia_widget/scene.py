@@ -17,9 +17,12 @@ from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark
 from .validate import check_choice, check_finite, closest
 
-SCHEMA, VERSION = "unitopia-design", 1
-CHANNELS = ("size", "width", "height", "color", "margin", "order")
+SCHEMA, VERSION = "unitopia-design", 2
+CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
+MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
+_MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
 BOUNDARIES = ("closed", "open")
+MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
                 "rotate", "blocks", "iterations", "name") + CHANNELS
@@ -30,14 +33,20 @@ class Layer:
 
     Change it with ``set(**fields)``; the owning chart is told, so the widget
     redraws. ``encodings`` maps channel -> column name or literal.
+
+    ``mark`` is one spec, a list of specs (a group drawn with several marks:
+    row i of the layer draws mark i mod k, or, with ``shape=<column>``, the
+    sorted categories take the marks in turn) or ``{category: spec}`` (with
+    ``shape=``). ``marks`` holds the Marks, ``mark_keys`` the dict's categories
+    (None for a list).
     """
 
     def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
                  forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
                  blocks=(), iterations=600, on_change=None, **encodings):
         self._on_change = None
-        self.name, self.rows = str(name), _rows(rows)
-        self.mark = _mark("circle" if mark is None else mark)
+        self.name, self.rows = layer_name(name), _rows(rows)
+        self.marks, self.mark_keys = _mark_set("circle" if mark is None else mark)
         self.encodings = {c: None for c in CHANNELS}
         self.encodings["margin"] = 0.0
         self.container = self.emitter = None
@@ -56,7 +65,10 @@ class Layer:
                 raise TypeError(f"Layer.set: unknown field {key!r}{closest(key, LAYER_FIELDS)}; "
                                 f"valid fields: {', '.join(LAYER_FIELDS)}")
         checked = {k: _CHECKS[k](v) for k, v in fields.items()}
-        old = {k: self.encodings[k] if k in CHANNELS else getattr(self, k) for k in checked}
+        old = {k: self.encodings[k] if k in CHANNELS else getattr(self, k) for k in checked
+               if k != "mark"}
+        if "mark" in checked:
+            old["mark"] = (self.marks, self.mark_keys)
         self._apply(checked)
         if self._on_change is not None:
             try:   # the owner checks the whole chart (columns, block cycles, unique names)
@@ -68,10 +80,17 @@ class Layer:
 
     def _apply(self, values: dict) -> None:
         for key, value in values.items():
-            if key in CHANNELS:
+            if key == "mark":
+                self.marks, self.mark_keys = value
+            elif key in CHANNELS:
                 self.encodings[key] = value
             else:
                 setattr(self, key, value)
+
+    @property
+    def mark(self) -> Mark:
+        """The layer's first mark (its only one unless it draws a group of marks)."""
+        return self.marks[0]
 
     @property
     def region(self) -> Container:
@@ -80,7 +99,8 @@ class Layer:
 
     def to_json(self) -> dict:
         return {
-            "name": self.name, "rows": self.rows, "mark": self.mark.to_json(),
+            "name": self.name, "rows": self.rows, "marks": [m.to_json() for m in self.marks],
+            "mark_keys": None if self.mark_keys is None else list(self.mark_keys),
             "encodings": dict(self.encodings),
             "container": None if self.container is None else self.container.to_json(),
             "emitter": None if self.emitter is None else self.emitter.to_json(),
@@ -92,11 +112,12 @@ class Layer:
     @classmethod
     def from_json(cls, d: dict, on_change=None) -> "Layer":
         """A layer from its design dict; ValueError for a malformed one. A design is
-        self-contained: images are data: URLs and SVG marks are inline text, never paths."""
+        self-contained: images are data: URLs and SVG marks are inline text, never paths.
+        Reads version 2 (``marks``, ``mark_keys``) and version 1 (``mark``) layers."""
         if not isinstance(d, dict):
             raise ValueError(f"design layer must be a JSON object, got {type(d).__name__}")
         who = f"design layer {d.get('name', '?')!r}"
-        missing = [k for k in ("name", "mark") if k not in d]
+        missing = [k for k in ("name", "marks") if k not in d and not (k == "marks" and "mark" in d)]
         if missing:
             raise ValueError(f"{who}: missing {' and '.join(map(repr, missing))}")
         for key, kind in (("encodings", dict), ("forces", list), ("blocks", list)):
@@ -105,7 +126,7 @@ class Layer:
                                  f"got {type(d[key]).__name__}")
         _check_inline(who, d)
         enc = {k: v for k, v in (d.get("encodings") or {}).items() if k in CHANNELS}
-        return cls(d["name"], mark=_mark(d["mark"], Mark.from_json), rows=d.get("rows"),
+        return cls(d["name"], mark=_design_marks(who, d), rows=d.get("rows"),
                    container=_container(d.get("container")),
                    emitter=_emitter(d.get("emitter")),
                    forces=_forces(d.get("forces") or []),
@@ -116,18 +137,42 @@ class Layer:
 
     def __repr__(self) -> str:
         bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
-        return (f"Layer({self.name!r}, mark={self.mark.kind}, {bound or 'no encodings'}, "
+        marks = self.mark.kind if len(self.marks) == 1 else f"{len(self.marks)} marks"
+        return (f"Layer({self.name!r}, mark={marks}, {bound or 'no encodings'}, "
                 f"container={self.container.kind if self.container else 'canvas'}, "
                 f"forces={len(self.forces)}, boundary={self.boundary!r})")
 
 
+def _design_marks(who: str, d: dict):
+    """The ``mark=`` value of a design layer: its marks list (version 2), as a
+    ``{category: mark}`` dict when ``mark_keys`` is set, or its one mark (the version 1
+    key ``mark``, which wins when an editor that knows only version 1 set it)."""
+    if "mark" in d:
+        return _mark(d["mark"], Mark.from_json)
+    marks, keys = d["marks"], d.get("mark_keys")
+    if not isinstance(marks, list) or not marks:
+        raise ValueError(f"{who}: marks must be a non-empty JSON array of marks, got {marks!r:.60}")
+    if len(marks) > MAX_MARKS:
+        _mark_set(marks)   # raises: too many marks
+    marks = [_mark(m, Mark.from_json) for m in marks]
+    if keys is None:
+        return marks
+    if not (isinstance(keys, list) and len(keys) == len(marks)
+            and all(isinstance(k, (str, int, float, bool)) for k in keys) and len(set(keys)) == len(keys)):
+        raise ValueError(f"{who}: mark_keys must be null or a list of {len(marks)} distinct "
+                         f"categories, one per mark; got {keys!r:.80}")
+    return dict(zip(keys, marks))
+
+
 def _check_inline(who: str, d: dict) -> None:
-    """ValueError unless the layer's mark and image container are inline data (no paths)."""
-    mark, container = d.get("mark"), d.get("container")
-    if isinstance(mark, dict) and mark.get("kind") == "svg" and not (
-            isinstance(mark.get("svg"), str) and mark["svg"].lstrip("\ufeff \t\r\n").startswith("<")):
-        raise ValueError(f"{who}: an svg mark must hold SVG text starting with '<', not a file "
-                         f"path; got {str(mark.get('svg'))[:60]!r}")
+    """ValueError unless the layer's marks and image container are inline data (no paths)."""
+    container = d.get("container")
+    marks = (d["marks"] if isinstance(d.get("marks"), list) else []) + [d.get("mark")]
+    for mark in marks:
+        if isinstance(mark, dict) and mark.get("kind") == "svg" and not (
+                isinstance(mark.get("svg"), str) and mark["svg"].lstrip("\ufeff \t\r\n").startswith("<")):
+            raise ValueError(f"{who}: an svg mark must hold SVG text starting with '<', not a file "
+                             f"path; got {str(mark.get('svg'))[:60]!r}")
     if isinstance(container, dict) and container.get("kind") == "image" and not (
             isinstance(container.get("image"), str)
             and container["image"].lstrip()[:5].lower() == "data:"):
@@ -152,6 +197,37 @@ def _mark(value, build=Mark.from_spec):
         return build(value)
     except ValueError as exc:
         raise ValueError(f"mark: {exc}") from None
+
+
+def is_category_dict(mark) -> bool:
+    """True for ``{category: mark spec}``, False for a mark dict such as ``{"kind": "shape", ...}``."""
+    return isinstance(mark, dict) and mark.get("kind") not in _MARK_KINDS
+
+
+def _mark_set(value, build=Mark.from_spec) -> tuple[list, list | None]:
+    """``(marks, mark_keys)`` of a ``mark=`` value: one spec, a list of specs or
+    ``{category: spec}`` (keys kept in order; JSON-safe str, int, float or bool)."""
+    keys = None
+    if is_category_dict(value):
+        keys = [k.item() if isinstance(k, np.generic) else k for k in value]
+        bad = [k for k in keys if not isinstance(k, (str, int, float, bool))]
+        if bad:
+            raise TypeError(f"mark: the categories of a {{category: mark}} dict must be str, int, "
+                            f"float or bool (as in the shape= column), got {bad[0]!r}")
+        specs = list(value.values())
+    elif isinstance(value, (list, tuple)):
+        specs = list(value)
+    else:
+        return [_mark(value, build)], None
+    if not 1 <= len(specs) <= MAX_MARKS:
+        raise ValueError(f"mark: a group needs 1 to {MAX_MARKS} marks, got {len(specs)}")
+    marks = []
+    for i, spec in enumerate(specs):
+        if isinstance(spec, (list, tuple)) or is_category_dict(spec):
+            raise ValueError(f"mark: entry {i} of the group is itself a list or dict; give one "
+                             f"mark spec per entry, got {spec!r:.60}")
+        marks.append(_mark(spec, build))
+    return marks, keys
 
 
 def _rows(rows):
@@ -235,13 +311,23 @@ def _channel(name):
 
 
 _CHECKS = {
-    "mark": _mark, "container": _container, "emitter": _emitter, "forces": _forces,
+    "mark": _mark_set, "container": _container, "emitter": _emitter, "forces": _forces,
     "boundary": lambda v: check_choice("Layer", "boundary", v, BOUNDARIES),
     "fill": _fill, "orientation": _orientation, "rotate": _rotate,
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
-    "iterations": _iterations, "name": str,
+    "iterations": _iterations, "name": lambda v: layer_name(v),
     **{c: _channel(c) for c in CHANNELS},
 }
+
+
+def layer_name(value) -> str:
+    """A layer name: any value as text, at most ``MAX_NAME`` characters (names are repeated
+    in every unit of the SVG and in error messages)."""
+    name = str(value)
+    if len(name) > MAX_NAME:
+        raise ValueError(f"layer name is {len(name)} characters long ({name[:40]!r}...); at most "
+                         f"{MAX_NAME} are allowed: choose a shorter name")
+    return name
 
 
 def block_order(layers) -> list[int]:

@@ -44,8 +44,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
               turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
     # the disc that holds a mark's footprint when packed: area-equivalent, widened for
     # shapes less compact than a disc (a star needs more room than its area)
-    compact = np.array([min(layer.mark.fill_fraction / (math.pi / 4), 1.0) for layer in layers])
-    radius = np.sqrt(units.area / math.pi / compact[units.layer]) * (1 + 2 * units.margin) * scale
+    compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
+    radius = np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin) * scale
     regions, taken = {}, {}
     for i in order:
         layer = layers[i]

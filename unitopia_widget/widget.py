@@ -15,9 +15,12 @@ import numpy as np
 import pandas as pd
 import traitlets as t
 
-from .chart import ARGUMENTS, Chart, check_kwargs, load_design
+from . import icons
+from .chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
 from .encodings import rgba
 from .export import to_png
+from .notebook import StaticDisplay
+from .publish import legend_image
 from .runner import Runner
 
 STATIC = pathlib.Path(__file__).parent / "static"
@@ -36,8 +39,10 @@ class _SyncedChart(Chart):
 class UnitoPia(anywidget.AnyWidget):
     """A pictorial unit chart in the notebook: ``UnitoPia(df, mark="star", size="Duration")``.
 
-    Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, SVG path or text,
-    PNG/JPEG path, array, PIL image, ``uw.Mark``; or ``{category: spec}`` with ``by``),
+    Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, an icon name such as
+    ``"fa:apple-whole"``, SVG path or text, PNG/JPEG path, array, PIL image, ``uw.Mark``;
+    a list of those, drawn in turn by the rows; or ``{category: spec}`` with ``shape``
+    or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``color`` (a column or CSS colour), ``by`` (one layer per value),
     ``margin`` (fraction of the mark's size, or a column), ``order`` (emission
@@ -45,23 +50,29 @@ class UnitoPia(anywidget.AnyWidget):
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
     covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),
-    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning).
+    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning),
+    ``title``/``caption`` (text above/below the exported chart), ``legend`` (True, False,
+    or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound).
+    ``status`` is "idle", "running", "done", "stopped" or "error"; ``stale`` is True when
+    the design changed since the shown layout.
     """
 
     _esm = STATIC / "widget.js"
     _css = STATIC / "widget.css"
 
     design = t.Dict().tag(sync=True)                   #: the design JSON (docs/protocol.md)
-    marks = t.List(t.Dict()).tag(sync=True)            #: one image per (layer mark, colour)
+    marks = t.List(t.Dict()).tag(sync=True)            #: one image per (layer, mark, colour)
     fields = t.List(t.Dict()).tag(sync=True)           #: [{"name", "type"}] of the DataFrame
     units = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): layer, mark, base w, base h
     colors = t.Bytes(b"").tag(sync=True)               #: uint8 (N, 4) RGBA
     titles = t.List(t.Unicode()).tag(sync=True)        #: tooltip per unit
     frame = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): x, y, angle deg, scale
     frame_count = t.Int(0).tag(sync=True)              #: frames sent in the current run
-    status = t.Unicode("idle").tag(sync=True)          #: idle, running, done, error
-    progress = t.Dict().tag(sync=True)                 #: {"iteration", "max_iterations", "loss"}
+    status = t.Unicode("idle").tag(sync=True)          #: idle, running, done, stopped, error
+    progress = t.Dict().tag(sync=True)                 #: {"iteration", "max_iterations", "loss", "done"}
     error = t.Unicode("").tag(sync=True)               #: last error message, "" if none
+    stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
+    legend = t.Dict().tag(sync=True)                   #: {} or {"src": svg data URL, "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
 
     def __init__(self, df: pd.DataFrame, **kwargs):
@@ -72,6 +83,10 @@ class UnitoPia(anywidget.AnyWidget):
         self._runner = Runner()
         self._applying = False
         self._progress = {}
+        self._laid_out = None     # the layout-relevant design of the shown layout
+        self._error_from = None   # "edit" or "run": what made the current error
+        self._frame_error = None  # a frame that could not be sent ends the run as an error
+        self._static = StaticDisplay(self)
         chart.widget = self
         self.fields = _fields(chart.df)
         self._push_design()
@@ -110,12 +125,32 @@ class UnitoPia(anywidget.AnyWidget):
         rows = self._chart._units.rows
         return self._chart.df.loc[[rows[i] for i in self.selected_units if 0 <= i < len(rows)]]
 
-    def to_svg(self) -> str:
-        return self._chart.to_svg()
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+        """The laid-out chart as SVG; see ``Chart.to_svg`` for the arguments."""
+        return self._chart.to_svg(legend=legend, title=title, caption=caption, outline=outline)
 
-    def save(self, path) -> None:
-        """``.svg``, ``.png`` or ``.json`` (the design, reload with ``UnitoPia.load``)."""
-        self._chart.save(path)
+    def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
+        """``.svg``, ``.png`` or ``.json`` (the design, reload with ``UnitoPia.load``);
+        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``."""
+        self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline)
+
+    title = property(lambda self: self._chart.title, lambda self, v: setattr(self._chart, "title", v),
+                     doc="The chart's title, drawn above it in the export (None: none).")
+    caption = property(lambda self: self._chart.caption,
+                       lambda self, v: setattr(self._chart, "caption", v),
+                       doc="The caption drawn under the chart in the export.")
+    legend_options = property(lambda self: self._chart.legend,
+                              lambda self, v: setattr(self._chart, "legend", v),
+                              doc='{"visible": bool, "position": ...}; set True, False, a '
+                                  'position or that dict.')
+
+    def dismiss_error(self) -> None:
+        """Clear ``error`` (the front end's "dismiss-error" message does the same)."""
+        with self.hold_sync():
+            self.error = ""
+            self._error_from = None
+            if self.status == "error":
+                self.status = "done" if self.placements is not None else "idle"
 
     @classmethod
     def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
@@ -133,17 +168,23 @@ class UnitoPia(anywidget.AnyWidget):
         self._runner.stop()  # a run while running restarts: the old one ends first
         self._chart.bind_check()
         self._push_units()
+        self._frame_error = None
         with self.hold_sync():
-            self.status, self.error, self.frame_count = "running", "", 0
-            self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None}
+            self.status, self.frame_count, self.stale = "running", 0, False
+            self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None, "done": False}
+        self._laid_out = _layout_key(self._chart.design())
         self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error)
         if wait:
-            self._runner.wait()
+            try:
+                self._runner.wait()
+            except KeyboardInterrupt:   # the notebook's stop button: end the run cleanly
+                self._runner.stop()
+                raise
             return self.placements
         return None
 
     def stop(self) -> None:
-        """Stop the running layout; the last frame becomes the layout."""
+        """Stop the running layout; the last frame becomes the layout (status "stopped")."""
         self._runner.stop()
 
     def wait(self, timeout: float | None = None):
@@ -160,13 +201,59 @@ class UnitoPia(anywidget.AnyWidget):
         return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress)
 
     def _on_frame(self, frame: np.ndarray) -> None:
-        with self.hold_sync():
-            self.frame = frame.astype(np.float32).tobytes()
-            self.frame_count += 1
-            self.progress = dict(self._progress)
+        """Send a frame. One that cannot be sent (a closed comm, a ZMQError) ends the run:
+        the layout so far is kept and the error is reported (``_on_done``)."""
+        if self._frame_error is not None:
+            return
+        try:
+            with self.hold_sync():
+                self.frame = frame.astype(np.float32).tobytes()
+                self.frame_count += 1
+                self.progress = {**self._progress, "done": False}
+        except Exception as exc:
+            self._frame_error = exc
+            self._runner.stop()   # from the layout thread: only asks the run to end
 
     def _on_done(self, table) -> None:
-        self.status = "done"
+        """The run ended: converged, stopped, or cut short by a frame that could not be sent."""
+        stopped = self._chart.result is not None and self._chart.result.cancelled
+        final = {**self._progress, "done": True}
+        if self._frame_error is not None:
+            exc = self._frame_error
+            self._quiet(progress=final)
+            self._on_error(exc, source="run", prefix="the layout stopped: a frame could not be sent: ")
+            return
+        if self._error_from == "run":
+            self._error_from = None
+            self._quiet(error="")
+        self._quiet(progress=final, status="stopped" if stopped else "done")
+        self._push_extras(static=True)
+
+    def _quiet(self, **traits) -> None:
+        """Set traits whose sync may fail (a dead comm): the Python side keeps the values."""
+        for name, value in traits.items():
+            try:
+                setattr(self, name, value)
+            except Exception:
+                if getattr(self, name) != value:   # not even stored: nothing more to do
+                    self.set_trait(name, value)
+
+    def _push_extras(self, static: bool = False) -> None:
+        """After a design change: the legend image; after a run (``static``) also the
+        notebook's static image (rendering it at every edit would slow big charts down)."""
+        try:
+            image = legend_image(self._chart)
+        except Exception:   # a design the legend cannot draw yet: shown without one
+            image = None
+        self._quiet(legend={} if image is None else {
+            "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
+            "width": image[1], "height": image[2]})
+        if not static:
+            return
+        try:
+            self._static.update()
+        except Exception:   # no kernel to publish to: the live view is all there is
+            pass
 
     def _on_run_error(self, exc: BaseException) -> None:
         """A failed run keeps the previous layout: show it again instead of the run's last frame."""
@@ -174,14 +261,14 @@ class UnitoPia(anywidget.AnyWidget):
         keep = result is not None and units is not None and len(result.center) == len(units.rows)
         frame = (np.column_stack([result.center, result.angle, np.full(len(result.angle), result.scale)])
                  .astype(np.float32).tobytes() if keep else b"")
-        with self.hold_sync():
-            self.frame = frame
-        self._on_error(exc)
+        self._quiet(frame=frame)
+        self._on_error(exc, source="run")
 
-    def _on_error(self, exc: BaseException) -> None:
-        with self.hold_sync():
-            self.error = f"{type(exc).__name__}: {exc}"
-            self.status = "error"
+    def _on_error(self, exc: BaseException, source: str = "run", prefix: str = "") -> None:
+        """Show an error; it stays until an accepted edit (edit errors), a successful run
+        (run errors) or a dismissal (``dismiss_error``, the "dismiss-error" message)."""
+        self._error_from = source
+        self._quiet(error=f"{prefix}{type(exc).__name__}: {exc}", status="error")
         warnings.warn(f"UnitoPia layout failed: {self.error}", RuntimeWarning, stacklevel=2)
 
     # --- sync ---------------------------------------------------------------
@@ -193,6 +280,9 @@ class UnitoPia(anywidget.AnyWidget):
         finally:
             self._applying = False
         self._push_units()
+        laid_out = self._laid_out is not None and self.placements is not None
+        self.stale = laid_out and _layout_key(self.design) != self._laid_out
+        self._push_extras()
 
     def _push_units(self) -> None:
         units = self._chart._units
@@ -200,13 +290,13 @@ class UnitoPia(anywidget.AnyWidget):
             return
         layers = self._chart.layers
         keys, marks, index = {}, [], np.zeros(len(units.rows), dtype=np.float32)
-        for k, (li, color) in enumerate(zip(units.layer, units.colors)):
-            key = (int(li), color)
+        for k, (li, mi, color) in enumerate(zip(units.layer, units.mark, units.colors)):
+            key = (int(li), int(mi), color)
             if key not in keys:
                 keys[key] = len(marks)
-                mark = layers[li].mark
+                mark = layers[li].marks[mi]
                 svg = mark.to_svg(color, max_side=128)
-                marks.append({"layer": layers[li].name, "aspect": mark.aspect,
+                marks.append({"layer": layers[li].name, "mark": int(mi), "aspect": mark.aspect,
                               "src": "data:image/svg+xml;base64," + base64.b64encode(svg.encode()).decode()})
             index[k] = keys[key]
         table = np.stack([units.layer.astype(np.float32), index,
@@ -224,9 +314,10 @@ class UnitoPia(anywidget.AnyWidget):
             return
         try:
             self._chart.apply_design(change["new"])
-            self.error = ""
+            if self._error_from == "edit":   # the design is good again: its error is fixed
+                self.error, self._error_from = "", None
         except Exception as exc:  # a bad edit keeps the last good design
-            self.error = f"{type(exc).__name__}: {exc}"
+            self.error, self._error_from = f"{type(exc).__name__}: {exc}", "edit"
             self._push_design()
 
     def _on_message(self, _widget, msg, _buffers) -> None:
@@ -237,6 +328,10 @@ class UnitoPia(anywidget.AnyWidget):
             threading.Thread(target=self._safe(self.stop), daemon=True).start()
         elif kind == "export":
             self._safe(lambda: self._export(msg.get("format")))()
+        elif kind == "icons":
+            self._safe(lambda: self._icons(msg.get("query")))()
+        elif kind == "dismiss-error":
+            self.dismiss_error()
 
     def _safe(self, fn):
         def call():
@@ -246,16 +341,44 @@ class UnitoPia(anywidget.AnyWidget):
                 self._on_error(exc)
         return call
 
+    def _icons(self, query) -> None:
+        """Reply to the mark panel's icon search with up to 30 closest icon names."""
+        query = query if isinstance(query, str) else ""
+        self.send({"type": "icons", "query": query, "names": icons.search(query[:100])})
+
     def _export(self, fmt: str) -> None:
         svg = self._chart.to_svg()
         if fmt == "png":
             data = "data:image/png;base64," + base64.b64encode(
-                to_png(svg, self._chart.canvas, 2.0)).decode()
+                to_png(svg, svg_size(svg), 2.0)).decode()
         elif fmt == "svg":
             data = svg
         else:
             raise ValueError(f"export format must be 'svg' or 'png', got {fmt!r}")
         self.send({"type": "export", "format": fmt, "data": data})
+
+
+    # --- the notebook's saved output ------------------------------------------------
+    def _repr_mimebundle_(self, **kwargs):
+        """The widget view, with a text/plain that says what the chart is."""
+        view = super()._repr_mimebundle_(**kwargs)
+        data, metadata = view if isinstance(view, tuple) else (view or {}, {})
+        return {**data, "text/plain": self._static.plain()}, metadata
+
+    def _ipython_display_(self) -> None:
+        """The widget view, then its static image (notebook.py), refreshed when a run ends."""
+        from IPython.display import display
+        data, metadata = self._repr_mimebundle_()
+        display(data, raw=True, metadata=metadata)
+        self._static.show()
+
+
+LAYOUT_FREE = ("title", "caption", "legend")   # design keys that do not change the layout
+
+
+def _layout_key(design: dict) -> dict:
+    """The part of a design that the layout depends on."""
+    return {k: v for k, v in design.items() if k not in LAYOUT_FREE}
 
 
 def _fields(df: pd.DataFrame) -> list[dict]:

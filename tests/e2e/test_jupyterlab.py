@@ -74,11 +74,12 @@ def use_tool(root, name: str) -> None:
     assert root.locator(f'[data-tool="{name}"]').get_attribute("aria-pressed") == "true"
 
 
-def wait_done(page, root, min_frames: int = 1, timeout: float = RUN_TIMEOUT) -> int:
-    """Waits for data-status == done with at least ``min_frames`` frames; returns data-frames."""
+def wait_done(page, root, min_frames: int = 1, timeout: float = RUN_TIMEOUT, status: str = "done") -> int:
+    """Waits for data-status == ``status`` (done; stopped after Stop) with at least
+    ``min_frames`` frames; returns data-frames."""
     page.wait_for_function(
-        "([el, n]) => el.dataset.status === 'done' && Number(el.dataset.frames) >= n",
-        arg=[root.element_handle(), min_frames], timeout=timeout, polling=100,
+        "([el, n, s]) => el.dataset.status === s && Number(el.dataset.frames) >= n",
+        arg=[root.element_handle(), min_frames, status], timeout=timeout, polling=100,
     )
     return int(root.get_attribute("data-frames"))
 
@@ -167,6 +168,12 @@ def test_run_from_python_streams_frames_tooltip_and_second_view(lab):
     assert running == sorted(running), "data-frames only grows during a run"
     assert final >= max(running)
     assert lab.eval("[w.status, w.frame_count, len(w.placements)]") == ["done", final, 150]
+    # The static image after the view (for nbconvert and static viewers) is refreshed at
+    # the end of the run and hidden while the live view shows.
+    static = page.locator(".unitopia-static")
+    page.wait_for_function("() => document.querySelectorAll('.unitopia-static .unit').length === 150",
+                           timeout=10_000, polling=200)
+    assert static.count() == 1 and not static.first.is_visible()
 
     # Hover the biggest mark with the select tool: the tooltip shows its row.
     k, x, y, expected = lab.eval(
@@ -226,14 +233,14 @@ def test_stop_keeps_the_last_frame(lab):
     stop = root.locator('[data-action="stop"]')
     t0 = time.monotonic()
     stop.click()
-    frames = wait_done(page, root, min_frames=3, timeout=30_000)
+    frames = wait_done(page, root, min_frames=3, timeout=30_000, status="stopped")
     assert time.monotonic() - t0 < 10, "stop ends the run promptly"
 
     state = lab.eval(
         "{'status': w.status, 'error': w.error, 'frames': w.frame_count, 'rows': len(w.placements),"
         " 'iteration': w.progress['iteration'], 'max': w.progress['max_iterations']}"
     )
-    assert state == {"status": "done", "error": "", "frames": frames, "rows": 2000,
+    assert state == {"status": "stopped", "error": "", "frames": frames, "rows": 2000,
                      "iteration": state["iteration"], "max": 3000}
     assert state["iteration"] < 3000, "stopped long before the iteration cap"
     # The layout is the last frame the browser got: centres and the global scale.

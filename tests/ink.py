@@ -1,0 +1,45 @@
+"""Independent measure of an exported chart: every unit of the SVG rendered alone (resvg).
+
+Used by the mark-group tests and benchmarks/groups.py. A pixel (at ``k`` x the
+canvas) is a unit's ink where its alpha > 0.5; overlap is the ink drawn over
+other ink, outside the ink beyond an ellipse, both as shares of all ink.
+"""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from unitopia_widget.export import png_array
+from unitopia_widget.svgsafe import SVG_NS
+
+
+def unit_inks(svg: str, canvas, k: int = 2):
+    """Yield ``(data-row, bool (H k, W k) ink)`` per unit of ``svg``, in document order."""
+    ET.register_namespace("", SVG_NS)
+    root = ET.fromstring(svg)
+    units = [el for el in root if el.get("class") == "unit"]
+    for el in units:
+        root.remove(el)
+    for el in units:
+        root.append(el)
+        yield el.get("data-row"), png_array(ET.tostring(root, encoding="unicode"), canvas, k)[..., 3] > 127
+        root.remove(el)
+
+
+def ink_metrics(svg: str, canvas, ellipse=None, k: int = 2) -> dict:
+    """``overlap`` and ``outside`` (shares of the ink), ``areas`` {data-row: ink px at k x}."""
+    w, h = int(round(canvas[0])), int(round(canvas[1]))
+    count = np.zeros((h * k, w * k), np.int32)
+    areas = {}
+    for row, ink in unit_inks(svg, canvas, k):
+        count += ink
+        areas[row] = float(ink.sum())
+    total = max(float(count.sum()), 1.0)
+    out = {"overlap": float(np.maximum(count - 1, 0).sum()) / total, "areas": areas, "outside": 0.0}
+    if ellipse is not None:
+        y, x = (np.mgrid[0:h * k, 0:w * k] + 0.5) / k
+        cx, cy, rx, ry = ellipse
+        inside = ((x - cx) / rx) ** 2 + ((y - cy) / ry) ** 2 <= 1
+        out["outside"] = float(count[~inside].sum()) / total
+    return out

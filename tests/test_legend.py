@@ -1,0 +1,184 @@
+"""The export's legend, title, caption and container outlines, read back from the SVG."""
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.legend import round_values
+
+SVG = "{http://www.w3.org/2000/svg}"
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+
+@pytest.fixture(scope="module")
+def chart():
+    rng = np.random.default_rng(1)
+    df = pd.DataFrame({"Task": rng.choice(["write", "test", "review & fix"], 40),
+                       "Duration": rng.uniform(2, 38, 40), "Year": rng.choice([2024, 2025], 40)})
+    c = uw.Chart(df, mark="star", size="Duration", color="Task", by="Year", iterations=30,
+                 container=uw.Container.ellipse(400, 250, 300, 200), title="Tasks <2025> & co")
+    c.layout()
+    return c
+
+
+def entries(svg, channel):
+    root = ET.fromstring(svg)
+    return [g for g in root.iter(f"{SVG}g")
+            if "legend-entry" in (g.get("class") or "") and g.get("data-channel") == channel]
+
+
+def scale_of(transform):
+    """(sx, sy) of the first scale() in a transform."""
+    sx, sy = re.search(r"scale\(([-\d.e]+) ([-\d.e]+)\)", transform).groups()
+    return float(sx), float(sy)
+
+
+def test_colour_entries_are_the_categories_drawn_with_the_layer_mark(chart):
+    svg = chart.to_svg()
+    found = entries(svg, "color")
+    assert [g.get("data-value") for g in found] == sorted(chart.df["Task"].unique())
+    colors = dict(zip(chart.df.loc[chart._units.rows, "Task"], chart._units.colors))
+    defs = {d.get("id"): d for d in ET.fromstring(svg).iter(f"{SVG}g") if d.get("id")}
+    for g in found:
+        use = g.find(f"{SVG}use")
+        fragment = ET.tostring(defs[use.get("href")[1:]], encoding="unicode")
+        assert colors[g.get("data-value")] in fragment          # the category's own colour
+        assert g.find(f"{SVG}text").text == g.get("data-value")
+    assert "review &amp; fix" in svg
+
+
+def test_size_legend_is_area_true_against_the_units(chart):
+    svg = chart.to_svg()
+    root = ET.fromstring(svg)
+    bw, bh = chart.layers[0].mark.box_size
+    per_value = []   # box area per unit of value, measured from each unit's transform
+    for g, value in zip([g for g in root.iter(f"{SVG}g") if g.get("class") == "unit"],
+                        chart.df.loc[chart.placements["row"], "Duration"]):
+        sx, sy = scale_of(g.get("transform"))
+        per_value.append(sx * sy * bw * bh / value)
+    sizes = entries(svg, "size")
+    assert 2 <= len(sizes) <= 4
+    values = [float(g.get("data-value")) for g in sizes]
+    lo, hi = chart.df["Duration"].min(), chart.df["Duration"].max()
+    assert all(lo <= v <= hi for v in values) and values == sorted(values)
+    assert all(v == round(v) for v in values)                   # round numbers
+    for g, v in zip(sizes, values):
+        sx, sy = scale_of(g.find(f"{SVG}use").get("transform"))
+        assert sx * sy * bw * bh / v == pytest.approx(np.median(per_value), rel=0.05)
+    assert "sizes shared across layers 2024, 2025" in svg
+
+
+def test_unit_key_counts_rows_and_names_each_layer(chart):
+    svg = chart.to_svg()
+    assert "1 mark = 1 row (40 rows)" in svg
+    keys = entries(svg, "unit")
+    assert [g.get("data-value") for g in keys] == ["2024", "2025"]
+    counts = chart.df["Year"].value_counts()
+    for g in keys:
+        assert f"(Year = {g.get('data-value')}): {counts[int(g.get('data-value'))]} rows" in \
+            g.find(f"{SVG}text").text
+
+
+def test_legend_grows_the_svg_beside_the_canvas_and_can_be_left_out(chart):
+    def view(svg):
+        return [float(v) for v in ET.fromstring(svg).get("viewBox").split()]
+    assert view(chart.to_svg(legend=False, title=""))[2:] == [800, 500]
+    assert 'class="legend"' not in chart.to_svg(legend=False)
+    x, y, w, h = view(chart.to_svg(legend="right", title=""))
+    assert x == 0 and w > 800
+    x, y, w, h = view(chart.to_svg(legend="left", title=""))
+    assert x < 0 and x + w == pytest.approx(800, abs=0.01)
+    x, y, w, h = view(chart.to_svg(legend="bottom", title=""))
+    assert y == 0 and h > 500
+    x, y, w, h = view(chart.to_svg(legend="top", title=""))
+    assert y < 0
+    root = ET.fromstring(chart.to_svg(legend=[20, 30], title=""))
+    assert root.find(f"{SVG}g[@class='legend']").get("transform") == "translate(20 30)"
+    with pytest.raises(ValueError, match="legend must be True, False, None, 'right'.*got 'middle'"):
+        chart.to_svg(legend="middle")
+
+
+def test_default_legend_only_when_a_channel_is_bound():
+    c = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0]}), iterations=20)
+    c.layout()
+    assert 'class="legend"' not in c.to_svg()
+    assert "1 mark = 1 row (3 rows)" in c.to_svg(legend=True)
+
+
+def test_title_and_caption_are_escaped_text_and_bounded(chart):
+    root = ET.fromstring(chart.to_svg(caption="Each star: one task."))
+    title = root.find(f"{SVG}text[@class='title']")
+    assert title.text == "Tasks <2025> & co"
+    caption = root.find(f"{SVG}text[@class='caption']")
+    assert "".join(caption.itertext()) == "Each star: one task."
+    assert float(root.get("viewBox").split()[1]) < 0           # the title sits above the canvas
+    assert ET.fromstring(chart.to_svg(title="")).find(f"{SVG}text[@class='title']") is None
+    with pytest.raises(ValueError, match="title is 201 characters long; at most 200"):
+        chart.to_svg(title="x" * 201)
+    with pytest.raises(TypeError, match="caption must be a string or None, got int"):
+        uw.Chart(chart.df, caption=3)
+
+
+def test_title_caption_and_legend_travel_in_the_design(chart):
+    d = chart.design()
+    assert d["title"] == "Tasks <2025> & co" and d["caption"] is None
+    assert d["legend"] == {"visible": True, "position": "right"}
+    other = uw.Chart(chart.df)
+    other.apply_design({**d, "legend": {"visible": False, "position": [10, 20]}, "caption": "c"})
+    assert other.title == d["title"] and other.caption == "c"
+    assert other.legend == {"visible": False, "position": [10.0, 20.0]}
+    with pytest.raises(ValueError, match="design: legend position must be"):
+        other.apply_design({**d, "legend": {"visible": True, "position": "nowhere"}})
+    assert other.caption == "c"                                 # a refused design changes nothing
+
+
+def test_numeric_colour_is_a_bar_with_round_ticks():
+    df = pd.DataFrame({"v": np.linspace(3, 97, 30)})
+    c = uw.Chart(df, color="v", iterations=20)
+    c.layout()
+    svg = c.to_svg()
+    assert 'class="legend-bar"' in svg and "linearGradient" in svg
+    assert [float(g.get("data-value")) for g in entries(svg, "color")] == [25, 50, 75]
+
+
+def test_outline_draws_each_container_as_a_path(chart):
+    assert 'class="container"' not in chart.to_svg()
+    root = ET.fromstring(chart.to_svg(outline=True))
+    paths = [p for p in root.iter(f"{SVG}path") if p.get("class") == "container"]
+    assert len(paths) == 2 and paths[0].get("d").startswith("M100 250A300 200")
+
+
+def test_outline_of_an_image_mask_is_traced():
+    mask = np.zeros((100, 160), bool)
+    yy, xx = np.mgrid[:100, :160]
+    mask[(xx - 80) ** 2 + (yy - 50) ** 2 < 40 ** 2] = True
+    mask[(xx - 80) ** 2 + (yy - 50) ** 2 < 15 ** 2] = False        # a hole
+    c = uw.Chart(pd.DataFrame({"v": [1.0] * 10}), iterations=20,
+                 container=uw.Container.image(mask, box=(0, 0, 800, 500)),
+                 background=np.full((10, 16, 3), 200, np.uint8))
+    c.layout()
+    root = ET.fromstring(c.to_svg(outline=True))
+    assert root.find(f"{SVG}image[@class='background']") is not None   # the background is kept
+    d = next(p for p in root.iter(f"{SVG}path") if p.get("class") == "container").get("d")
+    rings = [np.array([[float(v) for v in pt.split()] for pt in ring.split("L")])
+             for ring in re.findall(r"M([^MZ]+)Z", d)]
+    assert len(rings) == 2                                          # outline and hole
+    outer = max(rings, key=len)
+    radius = np.hypot(outer[:, 0] - 400, (outer[:, 1] - 250) * 800 / 500 * 100 / 160)
+    assert np.abs(radius - 200).max() < 8                           # 40 mask px = 200 canvas px
+
+
+def test_round_values():
+    assert round_values(1, 1000) == [250, 500, 750, 1000]
+    assert round_values(12, 13.5) == [12, 12.5, 13, 13.5]
+    assert 2 <= len(round_values(0.003, 0.0071)) <= 4
+
+
+def test_a_size_legend_of_big_marks_keeps_to_the_ends_of_the_range():
+    c = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0, 4.0, 1.5, 2.5]}), size="v", iterations=20)
+    c.layout()
+    svg = c.to_svg()
+    assert [float(g.get("data-value")) for g in entries(svg, "size")] == [1, 4]

@@ -1,0 +1,107 @@
+"""The widget in a real kernel: a notebook that keeps its chart through nbconvert, and a
+kernel interrupt (the notebook's stop button) during ``run(wait=True)``.
+
+Kernels import this checkout (PYTHONPATH), not an installed copy.
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import nbformat
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SETUP = ("import numpy as np, pandas as pd, torch, unitopia_widget as uw\n"
+         "torch.set_num_threads(1)\n"
+         "df = pd.DataFrame({'v': np.linspace(1, 4, 12), 'k': list('ab') * 6})\n")
+
+
+@pytest.fixture
+def kernel_env(tmp_path, monkeypatch):
+    """This checkout on the kernel's path, and Jupyter's files in a temporary folder."""
+    env = {"PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+           "JUPYTER_RUNTIME_DIR": str(tmp_path / "runtime"), "IPYTHONDIR": str(tmp_path / "ipython"),
+           "OMP_WAIT_POLICY": "PASSIVE", "OMP_NUM_THREADS": "1"}
+    for key, value in env.items():
+        monkeypatch.setenv(key, value)
+    return {**os.environ, **env}
+
+
+def test_nbconvert_html_shows_the_laid_out_chart(tmp_path, kernel_env):
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(SETUP + "w = uw.UnitoPia(df, size='v', color='k', "
+                                  "iterations=30, title='Twelve rows')\nw"),
+        nbformat.v4.new_code_cell("w.run(wait=True)\nw.status"),
+    ])
+    path = tmp_path / "chart.ipynb"
+    nbformat.write(nb, path)
+    subprocess.run([sys.executable, "-m", "jupyter", "nbconvert", "--to", "html", "--execute",
+                    "--ExecutePreprocessor.timeout=300", str(path)],
+                   check=True, env=kernel_env, capture_output=True, timeout=400)
+    html = (tmp_path / "chart.html").read_text()
+    assert "UnitoPia object at 0x" not in html
+    assert html.count('class="unit"') == 12              # the layout, in the widget's own cell
+    assert "Twelve rows" in html and 'class="legend"' in html
+
+
+def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel_env):
+    from jupyter_client import KernelManager
+
+    km = KernelManager(kernel_name="python3")
+    km.start_kernel(env=kernel_env)
+    kc = km.client()
+    kc.start_channels()
+    try:
+        kc.wait_for_ready(timeout=120)
+        reply = kc.execute_interactive(SETUP + "import unitopia_widget\n"
+                                       "assert unitopia_widget.__file__.startswith(%r)\n"
+                                       "w = uw.UnitoPia(df, size='v', iterations=100000)\n" % str(ROOT),
+                                       timeout=120)
+        assert reply["content"]["status"] == "ok"
+        msg_id = kc.execute("w.run(wait=True)")
+        _wait_for_frames(kc, 2)
+        km.interrupt_kernel()
+        reply = kc.get_shell_msg(timeout=120)
+        while reply["parent_header"].get("msg_id") != msg_id:
+            reply = kc.get_shell_msg(timeout=120)
+        assert reply["content"]["status"] == "error"
+        assert reply["content"]["ename"] == "KeyboardInterrupt"
+        out = _value(kc, "(w.status, w._runner.running, len(w.placements), "
+                         "w._chart.result.cancelled, w.progress['done'], "
+                         "[t.name for t in __import__('threading').enumerate()])")
+        status, running, placed, cancelled, done, threads = eval(out)
+        assert (status, running, placed, cancelled, done) == ("stopped", False, 12, True, True)
+        assert "unitopia-layout" not in threads
+        assert _value(kc, "bool(np.allclose(np.frombuffer(w.frame, np.float32).reshape(-1, 4)[:, 0], "
+                          "w.placements['x']))") == "True"       # the last frame is the layout
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
+
+
+def _value(kc, expression: str) -> str:
+    """The repr of ``expression`` evaluated in the kernel."""
+    found = []
+
+    def hook(msg):
+        if msg["msg_type"] == "execute_result":
+            found.append(msg["content"]["data"]["text/plain"])
+    reply = kc.execute_interactive(expression, output_hook=hook, timeout=120)
+    assert reply["content"]["status"] == "ok", reply["content"]
+    return found[-1]
+
+
+def _wait_for_frames(kc, count: int, timeout: float = 120.0) -> None:
+    """Read iopub until the widget has sent ``count`` frames (its frame_count updates)."""
+    import time
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        msg = kc.get_iopub_msg(timeout=timeout)
+        if msg["msg_type"] == "comm_msg":
+            state = msg["content"]["data"].get("state", {})
+            if state.get("frame_count", 0) >= count:
+                return
+    raise AssertionError(f"no {count} frames within {timeout} s")

@@ -1,0 +1,191 @@
+"""An honest status: stopped vs done, a full bar when a run ends, stale layouts, errors that
+stay until fixed or dismissed, conflicting channels, frames that cannot be sent, the legend
+trait, the notebook's static image, and odd inputs that get clear errors."""
+from __future__ import annotations
+
+import base64
+import copy
+import re
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.bezier import fit_bezier
+from test_runner import assert_frame_is_layout, poll
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+
+@pytest.fixture
+def df():
+    return pd.DataFrame({"v": [1.0, 2.0, 3.0, 4.0, 1.5, 2.5, 3.5, 0.5],
+                         "k": ["a", "b", "a", "b", "a", "b", "a", "b"]})
+
+
+def test_a_converged_run_is_done_with_a_full_bar_and_a_stopped_one_says_stopped(df):
+    w = uw.UnitoPia(df, size="v", iterations=40)
+    w.run(wait=True)
+    assert w.status == "done" and w.progress["done"] is True
+    w.layer(0).set(iterations=5000)
+    w.run()
+    poll(lambda: w.frame_count >= 2)
+    assert w.status == "running" and w.progress["done"] is False
+    w.stop()
+    assert w.status == "stopped" and w.progress["done"] is True
+    assert_frame_is_layout(w)
+
+
+def test_a_design_change_marks_the_layout_stale_until_the_next_run(df):
+    w = uw.UnitoPia(df, size="v", color="k", iterations=30)
+    w.layer(0).set(color=None)
+    assert w.stale is False                      # no layout yet: nothing to invalidate
+    w.run(wait=True)
+    assert w.stale is False
+    w.title = "A title"                          # title, caption, legend: the layout stands
+    assert w.stale is False
+    design = copy.deepcopy(w.design)
+    design["layers"][0]["encodings"]["size"] = None
+    w.design = design                            # a front-end edit that changes the layout
+    assert w.stale is True
+    design["layers"][0]["encodings"]["size"] = "v"
+    w.design = design                            # undone: the shown layout is right again
+    assert w.stale is False
+    w.layer(0).set(margin=0.2)
+    assert w.stale is True
+    w.run(wait=True)
+    assert w.stale is False
+
+
+def test_binding_width_never_silently_unbinds_size(df):
+    w = uw.UnitoPia(df, size="v", iterations=20)
+    design = copy.deepcopy(w.design)
+    design["layers"][0]["encodings"]["width"] = "v"
+    w.design = design
+    assert w.layer(0).encodings["size"] == "v" and w.layer(0).encodings["width"] is None
+    assert "size='v' cannot be combined with width='v'" in w.error
+    with pytest.raises(ValueError, match="size='v' cannot be combined with width='v'"):
+        w.layer(0).set(width="v")
+    assert w.layer(0).encodings["size"] == "v"
+
+
+def test_errors_stay_until_fixed_or_dismissed(df):
+    w = uw.UnitoPia(df, size="v", iterations=20)
+    bad = copy.deepcopy(w.design)
+    bad["layers"][0]["encodings"]["size"] = "nope"
+    w.design = bad
+    assert "size='nope'" in w.error
+    w.title = "unrelated"                        # a Python-side change leaves it shown
+    assert "size='nope'" in w.error
+    good = copy.deepcopy(w.design)
+    good["layers"][0]["encodings"]["margin"] = 0.1
+    w.design = good                              # an accepted edit: the design is good again
+    assert w.error == ""
+    w.design = bad
+    w._on_message(w, {"type": "dismiss-error"}, [])
+    assert w.error == ""
+
+
+def test_a_frame_that_cannot_be_sent_ends_the_run_as_an_error_keeping_its_layout(df, monkeypatch):
+    import zmq
+    w = uw.UnitoPia(df, size="v", iterations=5000)
+    sent = []
+
+    def send_state(key=None):
+        if key == "frame" or (isinstance(key, (list, set, tuple)) and "frame" in key):
+            sent.append(key)
+            if len(sent) > 2:
+                raise zmq.ZMQError(88, "Socket operation on non-socket")
+    monkeypatch.setattr(w, "send_state", send_state)
+    with pytest.warns(RuntimeWarning, match="a frame could not be sent"):
+        w.run(wait=True)
+    assert not w._runner.running
+    assert w.status == "error" and "ZMQError" in w.error and "Socket operation" in w.error
+    assert w.placements is not None and len(w.placements) == len(df)
+    assert w._chart.result.cancelled                          # ended at once, not after 5000
+    assert w.wait() is w.placements
+
+
+def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
+    w = uw.UnitoPia(df, size="v", color="k", iterations=20)
+    assert w.legend["src"].startswith("data:image/svg+xml;base64,")
+    svg = base64.b64decode(w.legend["src"].split(",", 1)[1]).decode()
+    assert 'data-channel="color"' in svg and "<script" not in svg
+    assert w.legend["width"] > 0 and w.legend["height"] > 0
+    w.run(wait=True)
+    after_run = w.legend["src"]
+    w.layer(0).set(color=None)
+    assert 'data-channel="color"' not in base64.b64decode(w.legend["src"].split(",", 1)[1]).decode()
+    assert w.legend["src"] != after_run
+    w.legend_options = False
+    assert w.legend == {}
+
+
+def test_the_static_output_carries_the_layout_as_an_image(df):
+    w = uw.UnitoPia(df, size="v", iterations=20)
+    data, _ = w._repr_mimebundle_()
+    assert "application/vnd.jupyter.widget-view+json" in data
+    assert "UnitoPia chart: 8 rows in 1 layer(s), not laid out yet" in data["text/plain"]
+    assert "image/svg+xml" not in w._static.bundle()
+    w.run(wait=True)
+    data = w._static.bundle()
+    assert data["image/svg+xml"].count('class="unit"') == len(df)
+    assert data["text/html"].count('class="unit"') == len(df)
+    assert "display:none" in data["text/html"]           # hidden after a live view only
+    ids = re.findall(r'id="([^"]+)"', data["image/svg+xml"])
+    refs = re.findall(r'href="#([^"]+)"', data["image/svg+xml"])
+    assert ids and set(refs) <= set(ids) and all(i.startswith("c") for i in ids)
+    assert base64.b64decode(data["image/png"])[:8] == b"\x89PNG\r\n\x1a\n"
+    state = w.get_state()                        # what a saved notebook keeps of the widget
+    assert len(state["frame"]) == 16 * len(df) and len(state["units"]) == 16 * len(df)
+    assert state["marks"] and state["status"] == "done"
+
+
+# --- odd inputs ------------------------------------------------------------------------
+
+def test_long_layer_names_are_refused(df):
+    with pytest.raises(ValueError, match="layer name is 10000 characters long.*at most 200"):
+        uw.Chart(df).add_layer("x" * 10_000)
+    c = uw.Chart(df)
+    with pytest.raises(ValueError, match="layer name is 201 characters long"):
+        c.layer(0).set(name="n" * 201)
+    assert c.layer(0).name == "layer-1"
+
+
+def test_colour_on_a_column_of_dicts_names_the_argument():
+    df = pd.DataFrame({"v": [1.0, 2.0], "d": [{"a": 1}, {"b": 2}]})
+    with pytest.raises(TypeError, match="color='d': the column's values must be categories.*dict"):
+        uw.Chart(df, color="d")
+
+
+def test_order_on_unorderable_objects_names_the_argument():
+    df = pd.DataFrame({"v": [1.0, 2.0, 3.0], "o": [object(), object(), object()]})
+    with pytest.raises(TypeError, match="order='o': the column's values cannot be put in order"):
+        uw.Chart(df, order="o")
+
+
+def test_a_stroke_with_a_nan_point_is_not_called_coincident():
+    with pytest.raises(ValueError, match=r"stroke: point 1 is \[nan, 3.0\], not finite"):
+        fit_bezier([[0, 0], [float("nan"), 3], [10, 10]])
+
+
+def test_a_one_pixel_container_box_is_refused(df):
+    mask = np.ones((4, 4), bool)
+    with pytest.raises(ValueError, match="holds 1 px\\^2 for 8 marks, so each mark would be under 2 px"):
+        uw.Chart(df, container=uw.Container.image(mask, box=(10, 10, 1, 1)))
+
+
+def test_the_png_export_button_renders_the_whole_page_with_its_legend(df):
+    from PIL import Image
+    import io
+    w = uw.UnitoPia(df, size="v", color="k", iterations=20, title="T")
+    w.run(wait=True)
+    sent = []
+    w.send = lambda msg, buffers=None: sent.append(msg)
+    w._on_message(w, {"type": "export", "format": "png"}, [])
+    png = base64.b64decode(sent[0]["data"].split(",", 1)[1])
+    width, height = Image.open(io.BytesIO(png)).size
+    view = [float(v) for v in re.search(r'viewBox="([^"]+)"', w.to_svg()).group(1).split()]
+    assert width == pytest.approx(2 * view[2], abs=3) and height == pytest.approx(2 * view[3], abs=3)
+    assert width > 1600                                       # the canvas and its legend

@@ -1,0 +1,197 @@
+"""The chart's legend (key): which colour is which category, what a mark's size means,
+what one mark stands for.
+
+``sections(...)`` reads the bound encodings and the laid-out marks and returns
+``Section``s of ``Entry``s; ``render(sections, ...)`` draws them as one
+``<g class="legend">`` block (its own ``<defs>`` inside, so stripping the group
+strips everything) and returns ``(svg_text, width, height)`` in canvas px.
+
+Every entry is a ``<g class="legend-entry" data-channel=... data-value=...>``.
+Size entries are area-true: the mark drawn for value v has the box area that a
+unit of value v has in the chart (the layer's own box area per unit of value,
+taken from the placed units, so it holds at the final scale).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+import numpy as np
+import pandas as pd
+
+from .encodings import is_css_color, palette_for
+
+FONT = 12            # px, entry labels
+TITLE_FONT = 12      # px, section titles (bold)
+CHAR_W = 0.6         # text width per character, in font sizes (a safe over-estimate)
+LABEL_CHARS = 40     # labels longer than this are cut with an ellipsis
+SWATCH = 16          # px, the long side of a colour or shape swatch and of the unit key's mark
+PAD = 8              # px between items
+BAR = (160, 12)      # px, numeric colour bar (w, h)
+NEUTRAL = "#8c8c8c"  # size and unit-key marks of layers whose colour encodes a column
+
+
+@dataclass
+class Entry:
+    """One item: a mark (``mark`` drawn in ``color`` over a ``w`` x ``h`` px box) and a label."""
+
+    channel: str | None       # "color", "size", "shape", or None (the unit key)
+    value: str                # data-value: the category, or the number a size entry stands for
+    label: str
+    mark: object = None       # a marks.Mark, None for a colour-bar tick
+    color: str | None = None
+    w: float = SWATCH
+    h: float = SWATCH
+
+
+@dataclass
+class Section:
+    title: str
+    entries: list = field(default_factory=list)
+    bar: tuple | None = None  # numeric colour: (lo, hi), drawn as a gradient with tick entries
+
+
+def clip(text, limit: int = LABEL_CHARS) -> str:
+    text = str(text)
+    return text if len(text) <= limit else text[:limit - 1] + "\u2026"
+
+
+def _swatch(mark, long_side: float = SWATCH) -> tuple[float, float]:
+    a = mark.aspect
+    return (long_side, long_side / a) if a >= 1 else (long_side * a, long_side)
+
+
+def round_values(lo: float, hi: float, most: int = 4) -> list[float]:
+    """2 to ``most`` round numbers in [lo, hi] (1, 2, 2.5 or 5 times a power of ten),
+    spread across the range; the range's ends rounded to 2 significant digits if the
+    range is too narrow for round steps."""
+    if not hi > lo:
+        return [float(f"{lo:.2g}")]
+    top = int(math.floor(math.log10(hi - lo))) + 1
+    steps = [m * 10.0 ** (e - 1) for e in range(top, top - 4, -1) for m in (5, 2.5, 2, 1)]
+    for fewest in (3, 2):   # three or four values read best; two if no round step gives more
+        for step in steps:
+            ticks = np.arange(math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9) + 1) * step
+            ticks = ticks[ticks > 0]
+            if fewest <= len(ticks) <= most:
+                return [float(f"{t:.6g}") for t in ticks]
+    inner = [float(f"{v:.2g}") for v in (lo, hi)]
+    return sorted({min(max(v, lo), hi) for v in inner})
+
+
+def _number(v: float) -> str:
+    return f"{v:.6g}"
+
+
+def neutral(layer, units, i) -> str | None:
+    """The colour a layer's size and key marks are drawn in: grey when colour encodes a
+    column (no category is meant), else the layer's own colour."""
+    if layer.encodings["color"] is not None and not is_css_color(layer.encodings["color"]):
+        return NEUTRAL
+    return next((c for c, li in zip(units.colors, units.layer) if li == i), None)
+
+
+def _rows_label(layer) -> str:
+    rows = layer.rows
+    if rows is None:
+        return ""
+    if "column" in rows:
+        return f" ({clip(rows['column'], 20)} = {clip(rows['value'], 20)})"
+    return " (chosen rows)"
+
+
+def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray, room: float = np.inf) -> list[Section]:
+    """The legend of ``layers`` over ``units`` (engine.Units). ``boxes``: ``(N, 2)`` drawn
+    box width and height per unit, canvas px (from the placements); ``room``: the height a
+    size legend's marks may take together before it shows only its two end values."""
+    rows = df.loc[units.rows]
+    out = []
+    out.extend(_color_sections(rows, layers, units))
+    out.extend(_size_sections(rows, layers, units, boxes, room))
+    out.append(_unit_key(layers, units))
+    return out
+
+
+def _color_sections(rows, layers, units) -> list[Section]:
+    out = []
+    columns = []
+    for layer in layers:
+        c = layer.encodings["color"]
+        if isinstance(c, str) and c in rows.columns and c not in columns:
+            columns.append(c)
+    for c in columns:
+        users = [i for i, layer in enumerate(layers) if layer.encodings["color"] == c]
+        mark = layers[users[0]].mark
+        series = rows[c][np.isin(units.layer, users)]
+        if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
+            v = series.to_numpy(dtype=float, na_value=np.nan)
+            v = v[np.isfinite(v)]
+            lo, hi = float(v.min()), float(v.max())
+            ticks = round_values(lo, hi) if hi > lo else [lo]
+            sec = Section(f"Colour: {clip(c)}", bar=(lo, hi))
+            sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
+        else:
+            palette = palette_for(series)
+            sec = Section(f"Colour: {clip(c)}")
+            sec.entries = [Entry("color", str(value), clip(value), mark, color, *_swatch(mark))
+                           for value, color in palette.items()]
+        out.append(sec)
+    return out
+
+
+def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
+    """One section per size column; layers sharing a column and its area per value share it."""
+    out = []
+    by_column: dict = {}
+    for i, layer in enumerate(layers):
+        c = layer.encodings["size"]
+        if isinstance(c, str) and c in rows.columns:
+            mine = units.layer == i
+            values = rows[c].to_numpy(dtype=float)[mine]
+            # silhouette area per unit of value: the same for layers whose sizes are shared
+            per_value = float(np.median(boxes[mine, 0] * boxes[mine, 1] / values)) * layer.mark.fill_fraction
+            by_column.setdefault(c, []).append((i, per_value, values))
+    for c, found in by_column.items():
+        groups = []
+        for item in found:
+            for g in groups:
+                if abs(g[0][1] - item[1]) <= 0.01 * g[0][1]:
+                    g.append(item)
+                    break
+            else:
+                groups.append([item])
+        for g in groups:
+            names = [clip(layers[i].name, 20) for i, _, _ in g]
+            if len(g) > 1:
+                note = f" (sizes shared across layers {', '.join(names)})"
+            elif len(found) > 1 or len(layers) > 1 and len(groups) > 1:
+                note = f" (layer {names[0]})"
+            else:
+                note = ""
+            i, per_value, _ = g[0]
+            mark, color = layers[i].mark, neutral(layers[i], units, i)
+            values = np.concatenate([v for _, _, v in g])
+            sec = Section(f"Size: {clip(c)} (area){note}")
+            for v in round_values(float(values.min()), float(values.max())):
+                box_area = per_value * v / mark.fill_fraction
+                h = math.sqrt(box_area / mark.aspect)
+                sec.entries.append(Entry("size", _number(v), _number(v), mark, color, h * mark.aspect, h))
+            if sum(e.h for e in sec.entries) > room:   # big marks: the ends of the range only
+                sec.entries = [sec.entries[0], sec.entries[-1]]
+            out.append(sec)
+    return out
+
+
+def _unit_key(layers, units) -> Section:
+    n = len(units.rows)
+    sec = Section(f"1 mark = 1 row ({n} rows)")
+    for i, layer in enumerate(layers):
+        count = int((units.layer == i).sum())
+        color = neutral(layer, units, i)
+        bound = [f"{k}: {clip(v, 20)}" for k, v in layer.encodings.items()
+                 if isinstance(v, str) and not (k == "color" and is_css_color(v))]
+        label = f"{clip(layer.name, 30)}{_rows_label(layer)}: {count} rows"
+        if bound:
+            label += " \u00b7 " + ", ".join(bound)
+        sec.entries.append(Entry(None, layer.name[:200], label, layer.mark, color,
+                                 *_swatch(layer.mark)))
+    return sec

@@ -1,0 +1,94 @@
+"""The exported page: the canvas with its title, caption and legend around it.
+
+The canvas keeps its own coordinates (canvas px, origin top-left); what lies
+beside it grows the SVG's ``viewBox`` (negative origin to the left and above).
+``compose`` returns the ``viewBox`` and the SVG text drawn over the canvas.
+"""
+from __future__ import annotations
+
+import textwrap
+from dataclasses import dataclass
+from numbers import Real
+from xml.sax.saxutils import escape
+
+from . import legend_draw
+from .legend import CHAR_W
+
+POSITIONS = ("right", "bottom", "left", "top")
+TITLE_CHARS, CAPTION_CHARS = 200, 2000
+TITLE_FONT, CAPTION_FONT = 18, 12
+GAP = 16   # px between the canvas and what is beside it
+
+
+@dataclass
+class Page:
+    view: tuple[float, float, float, float]   # viewBox x, y, w, h
+    overlay: str                               # SVG text drawn after the units
+
+
+def check_text(name: str, value, limit: int):
+    """None or a str of at most ``limit`` characters, else a clear error."""
+    if value is None:
+        return None
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string or None, got {type(value).__name__}")
+    if len(value) > limit:
+        raise ValueError(f"{name} is {len(value)} characters long; at most {limit} are drawn. "
+                         f"Shorten it")
+    return value or None
+
+
+def check_position(value):
+    """'right', 'bottom', 'left', 'top' or [x, y] (the legend's top-left corner, canvas px)."""
+    if isinstance(value, str) and value in POSITIONS:
+        return value
+    if (isinstance(value, (list, tuple)) and len(value) == 2
+            and all(isinstance(v, Real) and not isinstance(v, bool) and abs(v) < 1e5 for v in value)):
+        return [float(value[0]), float(value[1])]
+    raise ValueError(f"legend position must be one of {', '.join(map(repr, POSITIONS))} or "
+                     f"[x, y] in canvas px; got {value!r:.60}")
+
+
+def compose(canvas, sections=None, position="right", title=None, caption=None) -> Page:
+    """The page around a ``canvas`` (w, h): the legend ``sections`` at ``position``
+    (None: no legend), the title above, the caption below."""
+    w, h = canvas
+    x0, y0, x1, y1 = 0.0, 0.0, float(w), float(h)
+    parts = []
+    if sections:
+        _, lw, lh = legend_draw.render(sections, 0, 0, across=position in ("top", "bottom"))
+        if position == "right":
+            at = (w + GAP, 0.0)
+        elif position == "left":
+            at = (-GAP - lw, 0.0)
+        elif position == "bottom":
+            at = (0.0, h + GAP)
+        elif position == "top":
+            at = (0.0, -GAP - lh)
+        else:
+            at = tuple(position)
+        block, _, _ = legend_draw.render(sections, *at, across=position in ("top", "bottom"))
+        parts.append(block)
+        x0, y0 = min(x0, at[0]), min(y0, at[1])
+        x1, y1 = max(x1, at[0] + lw), max(y1, at[1] + lh)
+    if title:
+        y0 -= TITLE_FONT + GAP
+        parts.append(f'<text class="title" x="{(x0 + x1) / 2:.1f}" y="{y0 + TITLE_FONT:.1f}" '
+                     f'font-size="{TITLE_FONT}" font-weight="bold" font-family="sans-serif" '
+                     f'fill="#222" text-anchor="middle">{escape(title)}</text>')
+        x0, x1 = _fit(x0, x1, len(title) * TITLE_FONT * CHAR_W)
+    if caption:
+        per_line = max(20, int((x1 - x0) / (CAPTION_FONT * CHAR_W)))
+        lines = textwrap.wrap(caption, per_line) or [caption]
+        spans = "".join(f'<tspan x="{x0:.1f}" dy="{CAPTION_FONT * 1.3 if i else CAPTION_FONT:.1f}">'
+                        f'{escape(line)}</tspan>' for i, line in enumerate(lines))
+        parts.append(f'<text class="caption" x="{x0:.1f}" y="{y1 + GAP / 2:.1f}" '
+                     f'font-size="{CAPTION_FONT}" font-family="sans-serif" fill="#444">{spans}</text>')
+        y1 += GAP / 2 + CAPTION_FONT * 1.3 * len(lines) + GAP / 2
+    return Page(view=(x0, y0, x1 - x0, y1 - y0), overlay="".join(parts))
+
+
+def _fit(x0: float, x1: float, width: float) -> tuple[float, float]:
+    """Widen [x0, x1] symmetrically to hold a centred text ``width`` px wide."""
+    grow = max(0.0, width - (x1 - x0)) / 2
+    return x0 - grow, x1 + grow
