@@ -2,20 +2,21 @@
 // new one; the input is never mutated, so the old one can go on the undo stack.
 import { translatePathData } from "./pathdata.js";
 
-export const CHANNELS = ["size", "width", "height", "color", "margin", "order"];
+export const CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order"];
 
 export const clone = (value) => (value == null ? value : JSON.parse(JSON.stringify(value)));
 
 export function emptyDesign() {
-  return { schema: "unitopia-design", version: 1, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 2, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 
 export function newLayer(name, mark = { kind: "shape", name: "circle" }) {
   return {
     name,
     rows: null,
-    mark: clone(mark),
-    encodings: { size: null, width: null, height: null, color: null, margin: 0.0, order: null },
+    marks: [clone(mark)],
+    mark_keys: null,
+    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0.0, order: null },
     container: null,
     emitter: null,
     forces: [],
@@ -50,8 +51,10 @@ export const setLayerProps = (design, i, props) => updateLayer(design, i, (l) =>
 
 export function addLayer(design) {
   const next = clone(design);
-  const mark = next.layers.length ? next.layers[next.layers.length - 1].mark : undefined;
-  next.layers.push(newLayer(uniqueName(next, `layer-${next.layers.length + 1}`), mark));
+  const last = next.layers[next.layers.length - 1];
+  const layer = newLayer(uniqueName(next, `layer-${next.layers.length + 1}`));
+  if (last) layer.marks = layerMarks(last);
+  next.layers.push(layer);
   return next;
 }
 
@@ -93,17 +96,22 @@ export function renameLayer(design, i, name) {
 }
 
 /**
- * Binds a field (or null) to a channel of layer i. Size and width/height are exclusive
- * encodings of a mark's extent, so binding one clears the other.
+ * Binds a field (or null) to a channel of layer i. Only that channel changes: a binding
+ * Python cannot combine with the others is refused there, and its error is shown.
  */
 export function setEncoding(design, i, channel, value) {
   return updateLayer(design, i, (l) => {
     const enc = { ...newLayer("").encodings, ...(l.encodings || {}) };
     enc[channel] = value == null ? (channel === "margin" ? 0.0 : null) : value;
-    if (channel === "size" && value != null) enc.width = enc.height = null;
-    if ((channel === "width" || channel === "height") && value != null) enc.size = null;
     l.encodings = enc;
   });
+}
+
+/** A layer's marks: its `marks` list, or version 1's single `mark`, or a circle. */
+export function layerMarks(layer) {
+  if (layer && Array.isArray(layer.marks) && layer.marks.length) return clone(layer.marks);
+  if (layer && layer.mark && typeof layer.mark === "object") return [clone(layer.mark)];
+  return [{ kind: "shape", name: "circle" }];
 }
 
 export const setContainer = (design, i, container) =>

@@ -24,6 +24,7 @@ export function createStage(signal) {
   /** Sizes the canvases for a logical size; returns true when anything changed. */
   stage.layout = (size) => {
     const [W, H] = size;
+    wrap.style.maxWidth = `${W}px`; // never wider than the canvas: a legend beside it stays adjacent
     const avail = wrap.clientWidth || W;
     const scale = Math.min(1, avail / W);
     const dpr = window.devicePixelRatio || 1;

@@ -20,7 +20,7 @@ export function createToolbar(view) {
   const buttons = {
     undo: action("undo", "Undo (Ctrl+Z)", "\u21b6", () => view.undo()),
     redo: action("redo", "Redo (Ctrl+Shift+Z)", "\u21b7", () => view.redo()),
-    run: action("run", "Run the layout", "\u25b6 Run", () => model.send({ type: "run" }), "ut-run"),
+    run: action("run", "Run the layout", "\u25b6 Run", () => view.run(), "ut-run"),
     stop: action("stop", "Stop the layout", "\u25a0 Stop", () => model.send({ type: "stop" })),
     svg: action("export-svg", "Export SVG", "SVG \u2913", () => model.send({ type: "export", format: "svg" })),
     png: action("export-png", "Export PNG", "PNG \u2913", () => model.send({ type: "export", format: "png" })),

@@ -18,6 +18,7 @@ import { createLayersPanel } from "./panels/layers.js";
 import { createSettingsPanel } from "./panels/settings.js";
 import { createFieldsPanel } from "./panels/fields.js";
 import { createMarkPanel } from "./panels/mark.js";
+import { createLegend } from "./legend-view.js";
 import { download } from "./export.js";
 
 export function renderView({ model, el, signal }) {
@@ -37,7 +38,7 @@ export function renderView({ model, el, signal }) {
   let raf = 0;
 
   const view = {
-    model, session: s, stage, root,
+    model, session: s, stage, root, signal,
     design: () => draft || readDesign(model),
     layer: () => currentLayer(model),
     unit: () => 1 / stage.scale,
@@ -65,6 +66,8 @@ export function renderView({ model, el, signal }) {
       model.set("selected_units", [...next].sort((a, b) => a - b));
       model.save_changes();
     },
+    /** Run pressed: sent to the kernel, with a notice if nothing answers. */
+    run: () => status.run(),
     redraw,
   };
 
@@ -75,13 +78,15 @@ export function renderView({ model, el, signal }) {
   }
 
   const toolbar = createToolbar(view);
-  const status = createStatus(model);
+  const status = createStatus(model, signal);
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
+  const legend = createLegend(view, signal);
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, status.el),
     status.banner,
-    h("div", { class: "ut-main" }, stage.wrap, h("div", { class: "ut-side" }, panels.map((p) => p.el))),
+    status.notice,
+    h("div", { class: "ut-main" }, legend.area, h("div", { class: "ut-side" }, panels.map((p) => p.el))),
   );
   el.append(root);
   signal.addEventListener("abort", () => {
@@ -99,7 +104,10 @@ export function renderView({ model, el, signal }) {
     raf = 0;
     if (signal.aborted) return;
     const design = view.design();
-    if (stage.layout(design.canvas)) ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+    if (stage.layout(design.canvas)) {
+      ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+      legend.place();
+    }
     if (interp.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
@@ -125,6 +133,7 @@ export function renderView({ model, el, signal }) {
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     updatePanels();
+    legend.place();
     redraw("scene", "over");
   }
   function updatePanels() {
@@ -150,6 +159,7 @@ export function renderView({ model, el, signal }) {
   function onStatus() {
     root.dataset.status = String(model.get("status") || "idle");
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
+    root.dataset.stale = String(!!model.get("stale"));
     status.update();
     toolbar.update();
   }
@@ -158,7 +168,9 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["change:frame"], onFrame, signal);
   onModel(model, ["change:units", "change:colors"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
-  onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], onStatus, signal);
+  onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
+  onModel(model, ["change:stale"], onStatus, signal);
+  onModel(model, ["change:legend"], () => legend.place(), signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

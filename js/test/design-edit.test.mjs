@@ -64,10 +64,10 @@ test("layer renames and deletes keep blocks consistent", () => {
   assert.deepEqual(edit.moveLayer(d, 2, -2).layers.map((l) => l.name), ["layer-2", "b", "b-copy"]);
 });
 
-test("size and width/height bindings are exclusive; clearing margin restores 0", () => {
+test("binding a channel leaves the others alone; clearing margin restores 0", () => {
   let d = edit.setEncoding(base(), 0, "width", "W");
   d = edit.setEncoding(d, 0, "size", "S");
-  assert.equal(d.layers[0].encodings.width, null);
+  assert.equal(d.layers[0].encodings.width, "W");
   assert.equal(d.layers[0].encodings.size, "S");
   d = edit.setEncoding(edit.setEncoding(d, 0, "margin", "M"), 0, "margin", null);
   assert.equal(d.layers[0].encodings.margin, 0);

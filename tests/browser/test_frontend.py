@@ -391,13 +391,14 @@ def test_field_dropped_on_size_sets_the_encoding(page):
     assert layer(page)["encodings"]["color"] == "Task"
 
 
-def test_uploading_an_svg_or_png_replaces_the_mark(page, tmp_path):
+def test_uploading_an_svg_or_png_adds_a_mark(page, tmp_path):
     mount(page)
     svg = tmp_path / "flower.svg"
     svg.write_text('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><circle cx="5" cy="5" r="4"/></svg>')
     page.set_input_files('[data-role="mark-upload"]', str(svg))
-    page.wait_for_function("fake.get('design').layers[0].mark.kind === 'svg'")
-    assert layer(page)["mark"]["svg"].startswith("<svg")
+    page.wait_for_function("fake.get('design').layers[0].marks.at(-1).kind === 'svg'")
+    assert layer(page)["marks"][0] == {"kind": "shape", "name": "circle"}, "an upload adds to the mark set"
+    assert layer(page)["marks"][1]["svg"].startswith("<svg")
     png = tmp_path / "dot.png"
     png.write_bytes(bytes.fromhex(
         "89504e470d0a1a0a0000000d4948445200000001000000010806000000"
@@ -405,8 +406,8 @@ def test_uploading_an_svg_or_png_replaces_the_mark(page, tmp_path):
         "5fc8f1d20000000049454e44ae426082"
     ))
     page.set_input_files('[data-role="mark-upload"]', str(png))
-    page.wait_for_function("fake.get('design').layers[0].mark.kind === 'image'")
-    assert layer(page)["mark"]["image"].startswith("data:image/png;base64,")
+    page.wait_for_function("fake.get('design').layers[0].marks.at(-1).kind === 'image'")
+    assert layer(page)["marks"][2]["image"].startswith("data:image/png;base64,")
 
 
 def test_sketched_mark(page):
@@ -420,7 +421,8 @@ def test_sketched_mark(page):
     page.mouse.move(box["x"] + 80, box["y"] + 120, steps=5)
     page.mouse.up()
     page.click('[data-pad-action="use"]')
-    mark = layer(page)["mark"]
+    mark = layer(page)["marks"][-1]
+    assert len(layer(page)["marks"]) == 2
     assert mark["kind"] == "sketch" and len(mark["strokes"]) == 1 and mark["width"] > 0
 
 

@@ -81,17 +81,18 @@ function shift(upper, a, dx, dy) {
 var fmt = (v) => String(Math.round(v * 1e3) / 1e3);
 
 // src/design-edit.js
-var CHANNELS = ["size", "width", "height", "color", "margin", "order"];
+var CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order"];
 var clone = (value) => value == null ? value : JSON.parse(JSON.stringify(value));
 function emptyDesign() {
-  return { schema: "unitopia-design", version: 1, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 2, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 function newLayer(name, mark = { kind: "shape", name: "circle" }) {
   return {
     name,
     rows: null,
-    mark: clone(mark),
-    encodings: { size: null, width: null, height: null, color: null, margin: 0, order: null },
+    marks: [clone(mark)],
+    mark_keys: null,
+    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0, order: null },
     container: null,
     emitter: null,
     forces: [],
@@ -120,8 +121,10 @@ function updateLayer(design, i, fn) {
 var setLayerProps = (design, i, props) => updateLayer(design, i, (l) => Object.assign(l, props));
 function addLayer(design) {
   const next = clone(design);
-  const mark = next.layers.length ? next.layers[next.layers.length - 1].mark : void 0;
-  next.layers.push(newLayer(uniqueName(next, `layer-${next.layers.length + 1}`), mark));
+  const last = next.layers[next.layers.length - 1];
+  const layer = newLayer(uniqueName(next, `layer-${next.layers.length + 1}`));
+  if (last) layer.marks = layerMarks(last);
+  next.layers.push(layer);
   return next;
 }
 function duplicateLayer(design, i) {
@@ -158,10 +161,13 @@ function setEncoding(design, i, channel, value) {
   return updateLayer(design, i, (l) => {
     const enc = { ...newLayer("").encodings, ...l.encodings || {} };
     enc[channel] = value == null ? channel === "margin" ? 0 : null : value;
-    if (channel === "size" && value != null) enc.width = enc.height = null;
-    if ((channel === "width" || channel === "height") && value != null) enc.size = null;
     l.encodings = enc;
   });
+}
+function layerMarks(layer) {
+  if (layer && Array.isArray(layer.marks) && layer.marks.length) return clone(layer.marks);
+  if (layer && layer.mark && typeof layer.mark === "object") return [clone(layer.mark)];
+  return [{ kind: "shape", name: "circle" }];
 }
 var setContainer = (design, i, container) => updateLayer(design, i, (l) => void (l.container = container && { cuts: [], ...container }));
 function addCut(design, i, cut) {
@@ -307,6 +313,7 @@ function createStage(signal) {
   };
   stage.layout = (size) => {
     const [W, H] = size;
+    wrap.style.maxWidth = `${W}px`;
     const avail = wrap.clientWidth || W;
     const scale = Math.min(1, avail / W);
     const dpr = window.devicePixelRatio || 1;
@@ -1250,6 +1257,7 @@ function strokeTool(view, finish, look) {
 }
 
 // src/tools/select.js
+var additive = (ev) => !!(ev.shiftKey || ev.ctrlKey || ev.metaKey);
 var rp = (p) => [round2(p[0]), round2(p[1])];
 function select(view) {
   let grab = null;
@@ -1316,7 +1324,7 @@ function select(view) {
       const design = view.design();
       const found = find(p, design, view.layer());
       if (found && found.kind === "mark") {
-        view.toggleSelect([found.index], ev.shiftKey);
+        view.toggleSelect([found.index], additive(ev));
         view.pick(null);
         return;
       }
@@ -1327,7 +1335,7 @@ function select(view) {
       }
       view.pick(null);
       lasso = new Stroke(p, view.unit());
-      lasso.shift = ev.shiftKey;
+      lasso.shift = additive(ev);
     },
     move(p) {
       if (grab) {
@@ -1620,7 +1628,7 @@ function createToolbar(view) {
   const buttons = {
     undo: action("undo", "Undo (Ctrl+Z)", "↶", () => view.undo()),
     redo: action("redo", "Redo (Ctrl+Shift+Z)", "↷", () => view.redo()),
-    run: action("run", "Run the layout", "▶ Run", () => model.send({ type: "run" }), "ut-run"),
+    run: action("run", "Run the layout", "▶ Run", () => view.run(), "ut-run"),
     stop: action("stop", "Stop the layout", "■ Stop", () => model.send({ type: "stop" })),
     svg: action("export-svg", "Export SVG", "SVG ⤓", () => model.send({ type: "export", format: "svg" })),
     png: action("export-png", "Export PNG", "PNG ⤓", () => model.send({ type: "export", format: "png" }))
@@ -1647,32 +1655,85 @@ function createToolbar(view) {
   return { el, update, eraserWidth: () => Number(eraser.value) || 16 };
 }
 
+// src/status-text.js
+function statusLabel(status, stale) {
+  const s = ["idle", "running", "done", "stopped", "error"].includes(status) ? status : "idle";
+  if (stale && s !== "running" && s !== "error") return { text: "changed: run again", state: "stale" };
+  return { text: s, state: s };
+}
+function progressBar(p) {
+  const it = Number(p && p.iteration) || 0;
+  const max = Number(p && p.max_iterations) || 0;
+  const done = !!(p && p.done);
+  const parts = [];
+  if (max) parts.push(`iteration ${it} / ${max}`);
+  if (p && p.loss != null && Number.isFinite(Number(p.loss))) parts.push(`loss ${Number(p.loss).toPrecision(4)}`);
+  return { max: max || 1, value: done ? max || 1 : Math.min(it, max || 1), hidden: !max, detail: parts.join(" · ") };
+}
+
 // src/panels/status.js
-function createStatus(model) {
+var NO_ANSWER_MS = 2e3;
+var NO_KERNEL = "Run needs a running kernel: nothing answered. Start the kernel and run the notebook's cells, then press Run again.";
+function createStatus(model, signal) {
   const word = h("span", { class: "ut-status-word" });
   const bar = h("progress", { class: "ut-progress", max: 1, value: 0 });
   const detail = h("span", { class: "ut-progress-text" });
   const el = h("div", { class: "ut-status", "aria-live": "polite" }, word, bar, detail);
-  const banner = h("div", { class: "ut-error", role: "alert", hidden: true });
-  function update() {
-    const status = String(model.get("status") || "idle");
-    word.textContent = status;
-    word.dataset.state = status;
-    const p = model.get("progress") || {};
-    const it = Number(p.iteration) || 0;
-    const max = Number(p.max_iterations) || 0;
-    bar.max = max || 1;
-    bar.value = Math.min(it, max || 1);
-    bar.hidden = !max;
-    const parts = [];
-    if (max) parts.push(`iteration ${it} / ${max}`);
-    if (p.loss != null && Number.isFinite(Number(p.loss))) parts.push(`loss ${Number(p.loss).toPrecision(4)}`);
-    detail.textContent = parts.join(" · ");
-    const error = model.get("error");
-    banner.textContent = error ? String(error) : "";
-    banner.hidden = !error;
+  const text = h("span", { class: "ut-error-text", role: "alert" });
+  const dismiss = h("button", {
+    type: "button",
+    class: "ut-btn ut-icon",
+    dataset: { action: "dismiss-error" },
+    title: "Dismiss this error",
+    "aria-label": "Dismiss this error",
+    onclick: () => {
+      dismissed = String(model.get("error") || "");
+      banner.hidden = true;
+      send({ type: "dismiss-error" });
+    }
+  }, "✕");
+  const banner = h("div", { class: "ut-error", hidden: true }, text, dismiss);
+  const notice = h("div", { class: "ut-notice", dataset: { role: "notice" }, role: "status", hidden: true });
+  let dismissed = null;
+  let timer = 0;
+  signal.addEventListener("abort", () => clearTimeout(timer), { once: true });
+  function send(msg) {
+    try {
+      model.send(msg);
+      return true;
+    } catch {
+      return false;
+    }
   }
-  return { el, banner, update };
+  function run() {
+    clearTimeout(timer);
+    notice.hidden = true;
+    if (!send({ type: "run" })) return showNotice();
+    timer = setTimeout(showNotice, NO_ANSWER_MS);
+  }
+  function showNotice() {
+    notice.textContent = NO_KERNEL;
+    notice.hidden = false;
+  }
+  function answered() {
+    clearTimeout(timer);
+    notice.hidden = true;
+  }
+  function update() {
+    const label = statusLabel(String(model.get("status") || "idle"), !!model.get("stale"));
+    word.textContent = label.text;
+    word.dataset.state = label.state;
+    const p = progressBar(model.get("progress") || {});
+    bar.max = p.max;
+    bar.value = p.value;
+    bar.hidden = p.hidden;
+    detail.textContent = p.detail;
+    const error = String(model.get("error") || "");
+    if (error !== dismissed) dismissed = null;
+    text.textContent = error;
+    banner.hidden = !error || error === dismissed;
+  }
+  return { el, banner, notice, update, run, answered };
 }
 
 // src/panels/layers.js
@@ -1923,6 +1984,38 @@ function createFieldsPanel(view) {
 }
 var typeLabel = (t) => ({ numeric: "123", categorical: "abc", datetime: "date" })[t] || String(t || "");
 
+// src/mark-set.js
+function withMarks(design, i, fn) {
+  return updateLayer(design, i, (l) => {
+    const marks = layerMarks(l);
+    const keys = Array.isArray(l.mark_keys) && l.mark_keys.length === marks.length ? l.mark_keys.slice() : null;
+    const out = fn(marks, keys);
+    delete l.mark;
+    l.marks = out.marks;
+    l.mark_keys = out.keys;
+  });
+}
+var addMark = (design, i, mark) => withMarks(design, i, (marks) => ({ marks: [...marks, mark], keys: null }));
+var removeMark = (design, i, k) => withMarks(design, i, (marks, keys) => {
+  if (marks.length <= 1 || k < 0 || k >= marks.length) return { marks, keys };
+  return { marks: marks.filter((_, j) => j !== k), keys: keys && keys.filter((_, j) => j !== k) };
+});
+var moveMark = (design, i, k, delta) => withMarks(design, i, (marks, keys) => {
+  const j = k + delta;
+  if (k < 0 || k >= marks.length || j < 0 || j >= marks.length) return { marks, keys };
+  const move = (list2) => {
+    const [item] = list2.splice(k, 1);
+    list2.splice(j, 0, item);
+    return list2;
+  };
+  return { marks: move(marks), keys: keys && move(keys) };
+});
+function describeMark(mark) {
+  if (!mark || typeof mark !== "object") return "default";
+  if (mark.kind === "shape" || mark.kind === "icon") return String(mark.name);
+  return String(mark.kind);
+}
+
 // src/panels/sketch-pad.js
 var PAD = 160;
 function createSketchPad(onUse) {
@@ -1985,16 +2078,59 @@ function createSketchPad(onUse) {
   return { el };
 }
 
+// src/panels/icon-search.js
+var DEBOUNCE_MS = 150;
+function createIconSearch(model, signal, onPick) {
+  const input = h("input", {
+    type: "search",
+    class: "ut-icon-query",
+    dataset: { role: "icon-query" },
+    placeholder: "+ icon name… (fa:apple)",
+    "aria-label": "Find an icon mark by name",
+    spellcheck: false,
+    oninput: () => schedule()
+  });
+  const results = h("div", { class: "ut-icon-results", dataset: { role: "icon-results" }, "aria-live": "polite" });
+  let timer = 0;
+  function schedule() {
+    clearTimeout(timer);
+    timer = setTimeout(() => {
+      const query = input.value.trim();
+      if (!query) return replaceChildren(results);
+      model.send({ type: "icons", query });
+    }, DEBOUNCE_MS);
+  }
+  onModel(model, ["msg:custom"], (msg) => {
+    if (!msg || msg.type !== "icons" || msg.query !== input.value.trim()) return;
+    const names = Array.isArray(msg.names) ? msg.names.map(String) : [];
+    replaceChildren(results, names.length ? names.map((name) => h("button", {
+      type: "button",
+      class: "ut-btn ut-small ut-icon-name",
+      dataset: { icon: name },
+      title: `Add ${name}`,
+      onclick: () => {
+        onPick(name);
+        input.value = "";
+        replaceChildren(results);
+      }
+    }, name)) : h("span", { class: "ut-hint", text: `No icon matches “${msg.query}”.` }));
+  }, signal);
+  signal.addEventListener("abort", () => clearTimeout(timer), { once: true });
+  return { el: h("div", { class: "ut-icon-search" }, input, results) };
+}
+
 // src/panels/mark.js
 var SHAPES = ["circle", "square", "triangle", "star"];
 function createMarkPanel(view) {
   const { model } = view;
-  const gallery = h("div", { class: "ut-mark-gallery" });
-  const setMark = (mark) => view.commit(setLayerProps(view.design(), view.layer(), { mark }));
+  const title = h("h3", { text: "Marks" });
+  const items = h("ol", { class: "ut-mark-list" });
+  const edit = (fn) => view.commit(fn(view.design(), view.layer()));
+  const add2 = (mark) => edit((d, i) => addMark(d, i, mark));
   const shape = h(
     "select",
-    { dataset: { setting: "mark-shape" }, "aria-label": "Mark shape", onchange: (ev) => ev.target.value && setMark({ kind: "shape", name: ev.target.value }) },
-    h("option", { value: "", text: "shape…" }),
+    { dataset: { setting: "mark-shape" }, "aria-label": "Add a shape mark", onchange: (ev) => ev.target.value && add2({ kind: "shape", name: ev.target.value }) },
+    h("option", { value: "", text: "+ shape…" }),
     SHAPES.map((s) => h("option", { value: s, text: s }))
   );
   const upload = h("input", {
@@ -2005,10 +2141,10 @@ function createMarkPanel(view) {
     onchange: async (ev) => {
       const file = ev.target.files && ev.target.files[0];
       ev.target.value = "";
-      if (file) setMark(await markFromFile(file));
+      if (file) add2(await markFromFile(file));
     }
   });
-  const pad = createSketchPad((mark) => setMark(mark));
+  const pad = createSketchPad(add2);
   pad.el.hidden = true;
   const drawBtn = h("button", {
     type: "button",
@@ -2020,35 +2156,42 @@ function createMarkPanel(view) {
       drawBtn.setAttribute("aria-expanded", String(!pad.el.hidden));
     }
   }, "Draw…");
+  const icons = createIconSearch(model, view.signal, (name) => add2({ kind: "icon", name }));
   const el = h(
     "section",
     { class: "ut-panel ut-marks" },
-    h("header", {}, h("h3", { text: "Marks" })),
-    gallery,
-    h("div", { class: "ut-mark-tools" }, shape, h("label", { class: "ut-btn ut-small ut-upload" }, "Upload…", upload), drawBtn),
+    h("header", {}, title),
+    items,
+    h("div", { class: "ut-mark-tools" }, shape, h("label", { class: "ut-btn ut-small ut-upload" }, "+ upload…", upload), drawBtn),
+    icons.el,
     pad.el
   );
+  function item(layer, mark, k, n, entries) {
+    const entry = entries.find((m) => m && m.layer === layer.name && (Number(m.mark) || 0) === k);
+    const key = Array.isArray(layer.mark_keys) && layer.mark_keys.length === n ? layer.mark_keys[k] : void 0;
+    const label = key === void 0 ? describeMark(mark) : `${describeMark(mark)} = ${key}`;
+    const src = entry && typeof entry.src === "string" && entry.src.startsWith("data:image/") ? entry.src : null;
+    const btn = (act, label2, text, fn, disabled) => h("button", { type: "button", class: "ut-btn ut-icon", dataset: { markAction: act }, title: label2, "aria-label": label2, disabled, onclick: fn }, text);
+    return h(
+      "li",
+      { class: "ut-mark", dataset: { mark: String(k), kind: String(mark && mark.kind) } },
+      src ? h("img", { src, alt: `mark ${k + 1}`, draggable: false }) : h("span", { class: "ut-mark-empty", text: "?" }),
+      h("span", { class: "ut-mark-label", text: label, title: label }),
+      btn("up", "Move up", "↑", () => edit((d, i) => moveMark(d, i, k, -1)), k === 0),
+      btn("down", "Move down", "↓", () => edit((d, i) => moveMark(d, i, k, 1)), k === n - 1),
+      btn("remove", "Remove this mark", "✕", () => edit((d, i) => removeMark(d, i, k)), n <= 1)
+    );
+  }
   function update() {
-    const design = view.design();
-    const marks = list(model, "marks");
-    const current = view.layer();
-    replaceChildren(gallery, design.layers.map((layer, i) => {
-      const entry = marks.find((m) => m && m.layer === layer.name);
-      const src = entry && typeof entry.src === "string" && entry.src.startsWith("data:image/") ? entry.src : null;
-      return h(
-        "button",
-        { type: "button", class: `ut-mark${i === current ? " ut-current" : ""}`, dataset: { layer: String(i) }, title: String(layer.name), onclick: () => view.setLayer(i) },
-        src ? h("img", { src, alt: `mark of ${layer.name}`, draggable: false }) : h("span", { class: "ut-mark-empty", text: "?" }),
-        h("span", { class: "ut-mark-label", text: `${layer.name} · ${describe(layer.mark)}` })
-      );
-    }));
+    const layer = view.design().layers[view.layer()];
     shape.value = "";
+    if (!layer) return replaceChildren(items, h("li", { class: "ut-hint", text: "No layer." }));
+    title.textContent = `Marks: ${layer.name}`;
+    const marks = layerMarks(layer);
+    const entries = list(model, "marks");
+    replaceChildren(items, marks.map((m, k) => item(layer, m, k, marks.length, entries)));
   }
   return { el, update };
-}
-function describe(mark) {
-  if (!mark || typeof mark !== "object") return "default";
-  return mark.kind === "shape" ? String(mark.name) : String(mark.kind);
 }
 async function markFromFile(file) {
   const isSvg = file.type === "image/svg+xml" || /\.svg$/i.test(file.name);
@@ -2060,6 +2203,104 @@ async function markFromFile(file) {
     reader.readAsDataURL(file);
   });
   return { kind: "image", image: dataUrl };
+}
+
+// src/legend-place.js
+var SIDES = ["right", "bottom", "left", "top"];
+function legendSettings(design) {
+  const l = design && design.legend && typeof design.legend === "object" ? design.legend : {};
+  const p = l.position;
+  const position = SIDES.includes(p) ? p : isPoint(p) ? [Number(p[0]), Number(p[1])] : "right";
+  return { visible: l.visible !== false, position };
+}
+var isPoint = (p) => Array.isArray(p) && p.length === 2 && p.every((v) => Number.isFinite(Number(v)) && v !== null);
+function setLegend(design, patch) {
+  const next = clone(design);
+  next.legend = { ...next.legend && typeof next.legend === "object" ? next.legend : {}, ...legendSettings(design), ...patch };
+  return next;
+}
+function clampCorner([x, y], [w, h2], [W, H]) {
+  const keep = (v, lo, hi) => Math.round(10 * Math.max(lo, Math.min(hi, v))) / 10;
+  return [keep(x, 0, Math.max(0, W - w)), keep(y, 0, Math.max(0, H - h2))];
+}
+
+// src/legend-view.js
+function createLegend(view, signal) {
+  const { model, stage } = view;
+  const img = h("img", { class: "ut-legend", dataset: { role: "legend" }, alt: "legend", draggable: false, hidden: true, title: "Legend: drag to move it" });
+  const area = h("div", { class: "ut-canvas-area" }, stage.wrap);
+  const toggle = h("button", {
+    type: "button",
+    class: "ut-btn",
+    dataset: { action: "toggle-legend" },
+    title: "Show or hide the legend",
+    "aria-label": "Show or hide the legend",
+    onclick: () => view.commit(setLegend(view.design(), { visible: !legendSettings(view.design()).visible }))
+  }, "Legend");
+  let drag = null;
+  const trait = () => {
+    const l = model.get("legend");
+    return l && typeof l.src === "string" && l.src.startsWith("data:image/") ? l : null;
+  };
+  const size = (l) => [Number(l.width) > 0 ? Number(l.width) : img.naturalWidth, Number(l.height) > 0 ? Number(l.height) : img.naturalHeight];
+  function place() {
+    const l = trait();
+    const { visible, position } = legendSettings(view.design());
+    toggle.setAttribute("aria-pressed", String(visible));
+    toggle.setAttribute("aria-disabled", String(visible && !l));
+    img.hidden = !l || !visible;
+    if (!l) return void img.removeAttribute("src");
+    if (img.getAttribute("src") !== l.src) img.src = l.src;
+    const [w, hgt] = size(l);
+    const k = stage.scale;
+    img.style.width = w ? `${w * k}px` : "";
+    img.style.height = hgt ? `${hgt * k}px` : "";
+    const corner = drag ? drag.corner : Array.isArray(position) ? clampCorner(position, [w, hgt], stage.size) : null;
+    if (corner) {
+      if (img.parentNode !== stage.el) stage.el.append(img);
+      img.style.left = `${corner[0] * k}px`;
+      img.style.top = `${corner[1] * k}px`;
+      area.dataset.legendSide = "inside";
+    } else {
+      if (img.parentNode !== area) area.append(img);
+      img.style.left = img.style.top = "";
+      area.dataset.legendSide = position;
+    }
+  }
+  function cornerNow() {
+    const r = img.getBoundingClientRect();
+    const s = stage.el.getBoundingClientRect();
+    return [(r.left - s.left - stage.el.clientLeft) / stage.scale, (r.top - s.top - stage.el.clientTop) / stage.scale];
+  }
+  listen(img, "pointerdown", (ev) => {
+    const l = trait();
+    if (ev.button !== 0 || !l || drag) return;
+    ev.preventDefault();
+    ev.stopPropagation();
+    const start = cornerNow();
+    drag = { pointer: [ev.clientX, ev.clientY], start, size: size(l), corner: null, stop: new AbortController() };
+    drag.corner = clampCorner(start, drag.size, stage.size);
+    const opts = { signal: drag.stop.signal };
+    window.addEventListener("pointermove", move, opts);
+    window.addEventListener("pointerup", () => finish(true), opts);
+    window.addEventListener("pointercancel", () => finish(false), opts);
+    signal.addEventListener("abort", () => drag && drag.stop.abort(), opts);
+    place();
+  }, signal);
+  function move(ev) {
+    const d = [(ev.clientX - drag.pointer[0]) / stage.scale, (ev.clientY - drag.pointer[1]) / stage.scale];
+    drag.corner = clampCorner([drag.start[0] + d[0], drag.start[1] + d[1]], drag.size, stage.size);
+    place();
+  }
+  function finish(keep) {
+    const { corner, stop } = drag;
+    stop.abort();
+    drag = null;
+    if (keep) view.commit(setLegend(view.design(), { position: corner }));
+    else place();
+  }
+  listen(img, "load", () => place(), signal);
+  return { area, toggle, place };
 }
 
 // src/export.js
@@ -2108,6 +2349,7 @@ function renderView({ model, el, signal }) {
     session: s,
     stage,
     root,
+    signal,
     design: () => draft || readDesign(model),
     layer: () => currentLayer(model),
     unit: () => 1 / stage.scale,
@@ -2129,12 +2371,14 @@ function renderView({ model, el, signal }) {
     hasFrame: () => !!interp.to,
     hit: (p) => hitIndex().query(p[0], p[1]),
     marksInPolygon: (pts) => hitIndex().inPolygon(pts),
-    toggleSelect(indices, additive) {
-      const next = new Set(additive ? selected : []);
-      for (const i of indices) additive && next.has(i) && indices.length === 1 ? next.delete(i) : next.add(i);
+    toggleSelect(indices, additive2) {
+      const next = new Set(additive2 ? selected : []);
+      for (const i of indices) additive2 && next.has(i) && indices.length === 1 ? next.delete(i) : next.add(i);
       model.set("selected_units", [...next].sort((a, b) => a - b));
       model.save_changes();
     },
+    /** Run pressed: sent to the kernel, with a notice if nothing answers. */
+    run: () => status.run(),
     redraw
   };
   function hitIndex() {
@@ -2143,13 +2387,15 @@ function renderView({ model, el, signal }) {
     return index;
   }
   const toolbar = createToolbar(view);
-  const status = createStatus(model);
+  const status = createStatus(model, signal);
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
+  const legend = createLegend(view, signal);
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, status.el),
     status.banner,
-    h("div", { class: "ut-main" }, stage.wrap, h("div", { class: "ut-side" }, panels.map((p) => p.el)))
+    status.notice,
+    h("div", { class: "ut-main" }, legend.area, h("div", { class: "ut-side" }, panels.map((p) => p.el)))
   );
   el.append(root);
   signal.addEventListener("abort", () => {
@@ -2165,7 +2411,10 @@ function renderView({ model, el, signal }) {
     raf = 0;
     if (signal.aborted) return;
     const design = view.design();
-    if (stage.layout(design.canvas)) ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+    if (stage.layout(design.canvas)) {
+      ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+      legend.place();
+    }
     if (interp.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
@@ -2189,6 +2438,7 @@ function renderView({ model, el, signal }) {
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     updatePanels();
+    legend.place();
     redraw("scene", "over");
   }
   function updatePanels() {
@@ -2214,6 +2464,7 @@ function renderView({ model, el, signal }) {
   function onStatus() {
     root.dataset.status = String(model.get("status") || "idle");
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
+    root.dataset.stale = String(!!model.get("stale"));
     status.update();
     toolbar.update();
   }
@@ -2221,7 +2472,9 @@ function renderView({ model, el, signal }) {
   onModel(model, ["change:frame"], onFrame, signal);
   onModel(model, ["change:units", "change:colors"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
-  onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], onStatus, signal);
+  onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
+  onModel(model, ["change:stale"], onStatus, signal);
+  onModel(model, ["change:legend"], () => legend.place(), signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

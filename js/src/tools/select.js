@@ -1,11 +1,13 @@
 // select: drag emitter handles, forces and containers of the current layer (Delete or
-// Backspace removes the picked one); click a mark to select it (Shift toggles); drag on
+// Backspace removes the picked one); click a mark to select it (Shift, Ctrl or Cmd toggles); drag on
 // empty space to lasso-select marks. Drags show a draft design and commit once on release.
 import { clone, removeForce, setContainer, setEmitter, translateContainer, updateLayer } from "../design-edit.js";
 import { angleDeg, closeStroke, dist, distToPolyline, round2 } from "../geometry.js";
 import { containerOutline, containerPath, directionArrow, insideContainer } from "../shapes.js";
 import { Stroke } from "./stroke.js";
 
+/** Shift-, Ctrl- or Cmd-click adds to (toggles in) the selection. */
+const additive = (ev) => !!(ev.shiftKey || ev.ctrlKey || ev.metaKey);
 const rp = (p) => [round2(p[0]), round2(p[1])];
 
 export function select(view) {
@@ -77,7 +79,7 @@ export function select(view) {
       const design = view.design();
       const found = find(p, design, view.layer());
       if (found && found.kind === "mark") {
-        view.toggleSelect([found.index], ev.shiftKey);
+        view.toggleSelect([found.index], additive(ev));
         view.pick(null);
         return;
       }
@@ -88,7 +90,7 @@ export function select(view) {
       }
       view.pick(null);
       lasso = new Stroke(p, view.unit());
-      lasso.shift = ev.shiftKey;
+      lasso.shift = additive(ev);
     },
     move(p) {
       if (grab) {

@@ -4,6 +4,7 @@
 //   fake.message(msg)       a custom message from "Python"
 //   fake.saves              one entry per save_changes(): {keys, design, selected_units}
 //   fake.sent               custom messages the widget sent
+//   fake.playPython(opts)   answers as the kernel would (see playPython below)
 import widget from "/static/widget.js";
 
 const clone = (v) => (v === undefined ? undefined : JSON.parse(JSON.stringify(v)));
@@ -37,6 +38,25 @@ export class FakeModel {
   }
   send(msg) {
     this.sent.push(clone(msg));
+    if (this.python) this.python(msg);
+  }
+  /**
+   * Plays the Python side: each saved design gets `marks` entries, one per (layer, mark)
+   * with "mark": k, drawn from the mark's shape (a square for other kinds); an icon query
+   * is answered with the names in opts.icons that contain it (at most 30); Run sets
+   * status "running"; dismiss-error clears the error.
+   */
+  playPython({ icons = [] } = {}) {
+    const render = () => this.push("marks", marksFor(this.state.design));
+    this.python = (msg) => {
+      if (msg.type === "icons") {
+        const names = icons.filter((n) => n.includes(msg.query)).slice(0, 30);
+        setTimeout(() => this.message({ type: "icons", query: msg.query, names }), 10);
+      } else if (msg.type === "run") setTimeout(() => this.push("status", "running"), 10);
+      else if (msg.type === "dismiss-error") setTimeout(() => this.push("error", ""), 10);
+    };
+    this.on("change:design", () => setTimeout(render, 0));
+    render();
   }
   emit(event, ...args) {
     for (const fn of [...(this.handlers.get(event) || [])]) fn(...args);
@@ -67,9 +87,20 @@ export function u8(rows) {
   return new DataView(new Uint8Array(rows.flat()).buffer);
 }
 
+const COLORS = ["#e15759", "#4e79a7", "#59a14f", "#f28e2b", "#b07aa1"];
+
+/** `marks` entries for a design as Python would send them: one per (layer, mark). */
+export function marksFor(design) {
+  return design.layers.flatMap((l) => (l.marks || [l.mark]).map((m, k) => ({
+    layer: l.name, mark: k, aspect: 1,
+    src: svgMark(m && m.kind === "shape" && SHAPES[m.name] ? m.name : "square", COLORS[k % COLORS.length]),
+  })));
+}
+
 const SHAPES = {
   circle: (c) => `<circle cx="50" cy="50" r="48" fill="${c}"/>`,
   square: (c) => `<rect x="0" y="0" width="100" height="100" fill="${c}"/>`,
+  triangle: (c) => `<polygon fill="${c}" points="50,4 98,96 2,96"/>`,
   star: (c) => `<polygon fill="${c}" points="50,2 61,38 98,38 68,60 79,96 50,74 21,96 32,60 2,38 39,38"/>`,
 };
 
@@ -81,15 +112,16 @@ export function svgMark(shape = "circle", color = "#e15759") {
 export function defaultState() {
   return {
     design: {
-      schema: "unitopia-design", version: 1, canvas: [800, 500], background: null, seed: 0,
+      schema: "unitopia-design", version: 2, canvas: [800, 500], background: null, seed: 0,
+      legend: { visible: true, position: "right" },
       layers: [{
-        name: "layer-1", rows: null, mark: { kind: "shape", name: "circle" },
-        encodings: { size: null, width: null, height: null, color: null, margin: 0.0, order: null },
+        name: "layer-1", rows: null, marks: [{ kind: "shape", name: "circle" }], mark_keys: null,
+        encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0.0, order: null },
         container: null, emitter: null, forces: [], boundary: "closed", fill: null,
         orientation: null, rotate: false, blocks: [], iterations: 600,
       }],
     },
-    marks: [{ layer: "layer-1", src: svgMark("circle"), aspect: 1 }],
+    marks: [{ layer: "layer-1", mark: 0, src: svgMark("circle"), aspect: 1 }],
     fields: [{ name: "Duration", type: "numeric" }, { name: "Task", type: "categorical" }],
     units: new DataView(new ArrayBuffer(0)),
     colors: new DataView(new ArrayBuffer(0)),
@@ -97,6 +129,8 @@ export function defaultState() {
     frame: new DataView(new ArrayBuffer(0)),
     frame_count: 0,
     status: "idle",
+    stale: false,
+    legend: {},
     progress: {},
     error: "",
     selected_units: [],
@@ -130,5 +164,5 @@ function unmount() {
   }
 }
 
-window.unitopia = { mount, unmount, f32, u8, svgMark, defaultState, FakeModel, views };
+window.unitopia = { mount, unmount, f32, u8, svgMark, marksFor, defaultState, FakeModel, views };
 window.unitopiaReady = true;
