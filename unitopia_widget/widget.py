@@ -172,7 +172,7 @@ class UnitoPia(anywidget.AnyWidget):
         """A failed run keeps the previous layout: show it again instead of the run's last frame."""
         result, units = self._chart.result, self._chart._units
         keep = result is not None and units is not None and len(result.center) == len(units.rows)
-        frame = (np.column_stack([result.center, result.angle, np.full(len(result.angle), result.scale)])
+        frame = (np.column_stack([result.center, result.angle, result.unit_scale])
                  .astype(np.float32).tobytes() if keep else b"")
         with self.hold_sync():
             self.frame = frame
