@@ -45,7 +45,9 @@ class UnitoPia(anywidget.AnyWidget):
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
     covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),
-    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning).
+    ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning),
+    ``scales`` ("shared", the default: one global scale, so sizes stay comparable
+    across layers; "independent": each layer its own, so each closed container fills).
     """
 
     _esm = STATIC / "widget.js"
