@@ -93,13 +93,17 @@ class CanvasLoss(torch.autograd.Function):
             sample_grad -= terms.w_fill * inside_at * (total < 1.0).to(values.dtype)
         ctx.save_for_backward(sample_grad / area)
         drawn = values.sum().clamp_min(1e-6)
-        sums = torch.zeros((3, n_layers), dtype=values.dtype, device=values.device)
-        for row, v in enumerate((share * torch.relu(total - 1.0), values * outside_at, values)):
-            sums[row].index_add_(0, layer, v)
-        terms.layer_sums = sums.cpu().numpy()
+        outside = (values * outside_at).sum()
+        if n_layers == 1:
+            sums = torch.stack([overlap, outside, values.sum()])[:, None]
+        else:
+            sums = torch.zeros((3, n_layers), dtype=values.dtype, device=values.device)
+            for row, v in enumerate((share * torch.relu(total - 1.0), values * outside_at, values)):
+                sums[row].index_add_(0, layer, v)
+        terms.layer_sums = sums.detach().cpu().numpy()
         terms.stats = {
             "overlap": float(overlap / drawn),
-            "outside": float((values * outside_at).sum() / drawn),
+            "outside": float(outside / drawn),
             "fill": float(covered / terms.inside_total) if terms.inside_total > 0 else float("nan"),
         }
         return loss

@@ -195,7 +195,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                     poured, poured_at, travelling = poured + 1, iteration, True   # pour the next layer
                     place.hold(stage > poured)
             if (since_best >= p.patience and not travelling) \
-                    or iteration >= p.max_iterations - 2 * p.polish_iterations:   # room to legalize
+                    or iteration >= p.max_iterations - p.polish_iterations \
+                    - min(p.polish_iterations, p.max_iterations // 10):   # time to legalize
                 phase = "polish"
                 ctl.log -= p.polish_shrink * ctl.free
         else:
