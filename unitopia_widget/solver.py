@@ -143,8 +143,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                              p.sprite_sides, rotating, p.grid.rho)
         values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
         loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
-        if phase == "polish":
-            weight = p.force_weight * p.polish_force
+        if phase == "polish":   # legalising rounds: no force presses the marks together
+            weight = p.force_weight * p.polish_force * (rounds == 0)
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle
             weight = p.force_travel if travelling else p.force_weight
         for members, fs in force_layers:
@@ -176,9 +176,12 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
             # each controlled scale grows while its marks have room and gives way when they
             # crowd (or, when too few to crowd, as they leave the container)
+            # (poking out is worse than touching: room never grows a scale past a mark outside)
             crowd = np.maximum(overlap_g, outside_g)
-            grow = ctl.free & ((crowd < 0.5 * p.grow_overlap) | (room & (crowd < 1.5 * p.grow_overlap)))
-            shrink = ctl.free & (crowd > 1.5 * p.grow_overlap) & (not travelling)
+            grow = ctl.free & ((crowd < 0.5 * p.grow_overlap) | (
+                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < 0.4 * p.grow_overlap)))
+            shrink = ctl.free & ((crowd > 1.5 * p.grow_overlap) | (outside_g > p.grow_overlap)) \
+                & (not travelling)
             ctl.log += p.scale_step * (grow.astype(float) - shrink.astype(float))
             if grow.any():
                 since_best = 0
