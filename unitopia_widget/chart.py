@@ -27,7 +27,9 @@ from .validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
-             "background", "seed", "device", "iterations", "dropna", "title", "caption", "legend")
+             "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
+             "legend")
+SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
@@ -47,6 +49,9 @@ class Chart:
     """A pictorial unit chart: ``Chart(df, mark="star", size="Duration", color="Task")``.
 
     See ``UnitoPia`` for the arguments; ``Chart`` takes the same ones.
+    ``scales="shared"`` (default): one global scale for all layers, so sizes
+    stay comparable across layers; ``"independent"``: each layer its own scale,
+    so each closed container fills (sizes compare only within a layer).
     """
 
     def __init__(self, df: pd.DataFrame, **kwargs):
@@ -61,6 +66,7 @@ class Chart:
         self.canvas = _canvas(opts.pop("canvas", (800, 500)))
         self.background = _background(opts.pop("background", None))
         self.seed = _seed(opts.pop("seed", 0))
+        self.scales = _scales(opts.pop("scales", "shared"))
         self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
                                 True if opts.get("legend") is None else opts["legend"])
         opts.pop("legend", None)
@@ -228,7 +234,8 @@ class Chart:
         self.bind_check()
         units, result, table = engine.layout(
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
-            on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every)
+            on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
+            scales=self.scales)
         self._units, self.result, self.placements = units, result, table
         self._placed = units   # the units of the placements, kept when the design changes
         return table
@@ -307,7 +314,7 @@ class Chart:
         """The design JSON (docs/protocol.md)."""
         return {"schema": SCHEMA, "version": VERSION, "canvas": list(self.canvas),
                 "background": None if self.background is None else {"image": self.background},
-                "seed": self.seed, **self.page.to_json(),
+                "seed": self.seed, "scales": self.scales, **self.page.to_json(),
                 "layers": [layer.to_json() for layer in self.layers]}
 
     def apply_design(self, d: dict) -> None:
@@ -315,6 +322,7 @@ class Chart:
         check_design_header(d)
         canvas = _canvas(d.get("canvas", self.canvas))
         seed = _seed(d.get("seed", self.seed))
+        scales = _scales(d.get("scales", "shared"), "design: scales")
         background = d.get("background")
         if background and not (isinstance(background, dict) and isinstance(background.get("image"), str)
                                and background["image"].lstrip()[:5].lower() == "data:"):
@@ -345,7 +353,7 @@ class Chart:
         for layer in layers:
             layer._on_change = self._layer_changed
         self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
-        self.page = page
+        self.page, self.scales = page, scales
         self._units = units
         self._changed()
 
@@ -395,6 +403,14 @@ def _rows_of(df: pd.DataFrame, by, value) -> dict:
     if isinstance(plain, (str, int, float, bool)) and np.array_equal((df[by] == plain).to_numpy(), mask):
         return {"column": by, "value": plain}
     return {"index": df.index[mask].tolist()}
+
+
+def _scales(value, what: str = "scales") -> str:
+    """``"shared"`` or ``"independent"``, else a ValueError naming the value."""
+    if not isinstance(value, str) or value not in SCALES:
+        raise ValueError(f"{what} must be 'shared' (one scale: sizes comparable across layers) "
+                         f"or 'independent' (one per layer: each container fills), got {value!r}")
+    return value
 
 
 def _seed(seed) -> int:

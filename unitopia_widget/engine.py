@@ -143,46 +143,65 @@ def pick_device(device) -> str:
     return str(device)
 
 
-def initial_scale(units: Units, layers, canvas) -> tuple[float, bool]:
-    """The starting global scale and whether it is controlled (free) during the layout.
+def initial_scale(units: Units, layers, canvas, scales: str = "shared"):
+    """The starting global scales and which of them are controlled during the layout.
 
     Open layers (and closed ones with a ``fill``) fix the scale so their marks
-    cover ``fill`` of the container; closed layers without one start at 70%
-    coverage and let the optimiser grow the scale until the container is full.
+    cover ``fill`` of the container; closed layers without one start with
+    their footprints (margins included) at 75% coverage and let the solver grow
+    the scale until the container is full. No scale lets a layer's largest
+    mark outgrow the widest disc its container holds. ``scales="shared"``: one
+    scale for all layers (sizes comparable across layers; the smallest fixed
+    one wins); ``"independent"``: one per layer. Returns ``(group_scale (G,),
+    group_free (G,) bool, scale_group (L,))``.
     """
-    fixed, free = [], []
+    fixed, free, cap = {}, {}, {}
+    foot = units.area * (1 + 2 * units.margin) ** 2
     for i, layer in enumerate(layers):
         area = layer.region.area(canvas)
         if area <= 0:
             raise ValueError(f"layer {layer.name!r}: its container does not overlap the canvas")
-        sharing = sum(units.area[units.layer == j].sum() for j, other in enumerate(layers)
-                      if other.region == layer.region)
+        shared = [j for j, other in enumerate(layers) if other.region == layer.region
+                  and (scales == "shared" or j == i)]
+        mine = units.layer == i
         if layer.boundary == "open" or layer.fill is not None:
             fill = layer.fill or DEFAULT_OPEN_FILL
-            fixed.append(math.sqrt(fill * area / sharing))
+            fixed[i] = math.sqrt(fill * area / units.area[np.isin(units.layer, shared)].sum())
         else:
             # start loose: compact marks at 75% coverage, spiky ones (stars) lower
-            start = min(max(0.75 * units.fill_fraction[units.layer == i].mean() / 0.785, 0.35), 0.75)
-            free.append(math.sqrt(start * area / sharing))
-    for i, layer in enumerate(layers):
+            start = min(max(0.75 * units.fill_fraction[mine].mean() / 0.785, 0.35), 0.75)
+            free[i] = math.sqrt(start * area / foot[np.isin(units.layer, shared)].sum())
         emitter = layer.emitter
         if getattr(emitter, "mode", None) == "line":
             # a line holds its marks end to end: at most the curve's length of diameters
-            mine = units.layer == i
             diameters = 2 * np.sqrt(units.area[mine] / math.pi) * (1 + 2 * units.margin[mine])
-            limit = 0.95 * emitter.curve.length / diameters.sum()
-            (fixed if fixed else free).append(limit)
-    if fixed:
-        return min(fixed), False
-    return min(free), True
+            (fixed if i in fixed else free)[i] = min((fixed if i in fixed else free)[i],
+                                                     0.95 * emitter.curve.length / diameters.sum())
+        longest = float(np.max(np.maximum(units.half_w[mine], units.half_h[mine])))
+        cap[i] = 0.95 * _widest_disc(layer.region, canvas) / longest
+    if scales == "independent":
+        group = np.arange(len(layers))
+        scale = np.array([min(fixed.get(i, free.get(i)), cap[i]) for i in range(len(layers))])
+        return scale, np.array([i not in fixed for i in range(len(layers))]), group
+    start = min(fixed.values()) if fixed else min(free.values())
+    return np.array([min(start, *cap.values())]), np.array([not fixed]), np.zeros(len(layers), int)
+
+
+def _widest_disc(container, canvas) -> float:
+    """Radius (canvas px) of the widest disc inside ``container`` on the canvas."""
+    from .lattice import Region
+    rho = min(1.0, 600.0 / max(canvas))
+    return float(Region(container.coverage(canvas, rho), rho).depth.max())
 
 
 def build_problem(units: Units, layers, canvas, seed: int, device: str,
-                  max_iterations: int | None = None) -> Problem:
+                  max_iterations: int | None = None, scales: str = "shared") -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``."""
     order = block_order(layers)
-    scale, free_scale = initial_scale(units, layers, canvas)
-    foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * scale
+    group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales)
+    scale, free_scale = float(group_scale[0]), bool(group_free.any())
+    unit_scale = group_scale[scale_group[units.layer]]
+    foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * unit_scale
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
@@ -200,7 +219,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         for b in range(a + 1, len(layers)):
             if layers[a].region == layers[b].region and not (blocks[a, b] or blocks[b, a]):
                 blocks[a, b] = blocks[b, a] = 1.0
-    norm = float((units.area * (1 + 2 * units.margin) ** 2).sum()) * (scale * rho) ** 2
+    norm = float((units.area * (1 + 2 * units.margin) ** 2 * unit_scale ** 2).sum()) * rho ** 2
     terms = CanvasTerms(
         penalty=torch.stack([f[2] for f in fields]).to(dev),
         outside=torch.stack([f[1] for f in fields]).to(dev),
@@ -208,7 +227,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                             else torch.zeros_like(f[0]) for f, layer in zip(fields, layers)]).to(dev),
         blocks=blocks.to(dev), norm=norm, w_fill=0.15 if free_scale else 0.0)
     generator = torch.Generator().manual_seed(int(seed))
-    start = start_positions(units, layers, order, canvas, scale, grid, generator)
+    start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
@@ -230,8 +249,17 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
+                   scale_group=scale_group, group_scale=group_scale, group_free=group_free,
+                   reach=_reach(units),
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers))
+
+
+def _reach(units: Units) -> np.ndarray:
+    """``(N,)`` at scale 1: the ink's area-equivalent radius less the margin band around it
+    (the room the controller looks for is measured from the footprints)."""
+    band = 2 * units.margin * np.minimum(units.half_w, units.half_h)
+    return np.maximum(np.sqrt(units.area / math.pi) - band, 0.0)
 
 
 def _fields(container, grid: RasterGrid, falloff: float):
@@ -245,8 +273,8 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
     """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height,
     mark); ``mark`` indexes the layer's marks."""
     names = np.array([layer.name for layer in layers], dtype=object)
-    width = 2 * units.half_w * result.scale
-    height = 2 * units.half_h * result.scale
+    width = 2 * units.half_w * result.unit_scale
+    height = 2 * units.half_h * result.unit_scale
     box = units.box_size
     return pd.DataFrame({
         "row": units.rows, "layer": names[units.layer],
@@ -257,10 +285,10 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
 
 
 def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
-           on_progress=None, frame_every: int = 3):
+           on_progress=None, frame_every: int = 3, scales: str = "shared"):
     """Bind, build and solve. Returns ``(units, result, placements DataFrame)``."""
     units = bind(df, layers)
-    problem = build_problem(units, layers, canvas, seed, pick_device(device))
+    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every)
     table = placements(units, layers, result)

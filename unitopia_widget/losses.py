@@ -35,6 +35,8 @@ class CanvasTerms:
     w_contain: float = 1.0
     w_fill: float = 0.0
     stats: dict = field(default_factory=dict)  # filled by each forward: overlap, outside, fill
+    #: filled by each forward: per-layer sums ``(3, L)`` (overlap, outside, drawn alpha), numpy
+    layer_sums: object = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
 
     @property
@@ -92,9 +94,17 @@ class CanvasLoss(torch.autograd.Function):
             sample_grad -= terms.w_fill * inside_at * (total < 1.0).to(values.dtype)
         ctx.save_for_backward(sample_grad / area)
         drawn = values.sum().clamp_min(1e-6)
+        outside = (values * outside_at).sum()
+        if n_layers == 1:
+            sums = torch.stack([overlap, outside, values.sum()])[:, None]
+        else:
+            sums = torch.zeros((3, n_layers), dtype=values.dtype, device=values.device)
+            for row, v in enumerate((share * torch.relu(total - 1.0), values * outside_at, values)):
+                sums[row].index_add_(0, layer, v)
+        terms.layer_sums = sums.detach().cpu().numpy()
         terms.stats = {
             "overlap": float(overlap / drawn),
-            "outside": float((values * outside_at).sum() / drawn),
+            "outside": float(outside / drawn),
             "fill": float(covered / terms.inside_total) if terms.inside_total > 0 else float("nan"),
         }
         return loss

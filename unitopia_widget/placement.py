@@ -89,12 +89,19 @@ class Placement:
         return self.orientation_weight * ((1 - cos) * mask).sum() / mask.sum().clamp_min(1)
 
     @torch.no_grad()
-    def project(self, canvas: tuple[float, float], iteration: int) -> None:
-        """Apply the decaying drift, keep centres on the canvas and tracks in order."""
+    def project(self, canvas: tuple[float, float], iteration: int,
+                half: torch.Tensor | None = None) -> None:
+        """Apply the decaying drift, keep marks on the canvas and tracks in order.
+
+        ``half``: ``(N, 2)`` half extents (canvas px) of each mark's ink: its
+        centre stays that far from the canvas edge (at the middle when wider).
+        """
         if self.drift is not None:
             self.t += self.drift * (DRIFT_DECAY ** iteration) * self.keep
-        w, h = canvas
-        self.t[:, 0].clamp_(0, w)
-        self.t[:, 1].clamp_(0, h)
+        size = torch.tensor(canvas, dtype=self.t.dtype, device=self.t.device)
+        if half is None:
+            half = torch.zeros_like(self.t)
+        low = torch.minimum(half, size / 2)
+        self.t.copy_(torch.minimum(torch.maximum(self.t, low), size - low))
         for track in self.tracks:
             track.project()

@@ -6,8 +6,13 @@ stays below ``grow_overlap / 2`` and gives way above it once marks rest;
 layers held back for pouring start moving when the stage before them rests;
 ends when the loss stops improving and the marks rest) and a *polish* phase
 (scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
-steps) that removes the last overlaps; if a closed layout still overlaps more
-than ``final_overlap``, the scale gives up a little and polishing repeats.
+steps) that removes the last overlaps; if a layout still overlaps more than
+``final_overlap`` or pokes out more than ``final_outside``, the scale gives up
+a little and polishing repeats (open layouts too: data-true sizes never push
+a mark out). Closed layers also grow while their container has *room*: a
+share over ``room_target`` farther than a median mark radius from any mark
+(``room.py``), even while jammed marks keep some overlap. Layers may have
+their own scales (``scale_group``): each group is controlled on its own layers.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
 Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
@@ -28,6 +33,7 @@ from .forces import potential
 from .losses import CanvasLoss, CanvasTerms
 from .placement import Placement
 from .raster import RasterGrid, plan_groups, render_samples
+from .room import empty_share
 
 
 @dataclass
@@ -45,8 +51,12 @@ class Problem:
     placement: Placement           # positions and angles, with their constraints
     terms: CanvasTerms             # containment / fill fields per layer, blocks
     forces: list                   # per layer: list of forces
-    scale: float                   # initial global scale
+    scale: float                   # initial global scale (of scale group 0)
     free_scale: bool               # control the scale (some closed layer fills its container)
+    scale_group: np.ndarray | None = None  # (L,) scale group per layer; None: one shared scale
+    group_scale: np.ndarray | None = None  # (G,) initial scale per group; None: [scale]
+    group_free: np.ndarray | None = None   # (G,) bool, controlled groups; None: [free_scale]
+    reach: np.ndarray | None = None        # (N,) ink radius less margin band at scale 1 (room)
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
     travelling: bool = True        # whether marks start away from where they will rest
@@ -59,7 +69,9 @@ class Problem:
     lr: float = 0.04               # translation step when marks touch, in mean mark radii
     lr_travel: float = 0.3         # the step while nothing overlaps (marks travelling), mean radii
     overlap_target: float = 0.002  # raster overlap share above which steps shrink
-    final_overlap: float = 0.001   # overlap share a closed layout must reach (scale shrinks until)
+    final_overlap: float = 0.001   # overlap share a layout must reach (scale shrinks until)
+    final_outside: float = 0.001   # outside share a layout must reach (scale shrinks until)
+    room_target: float = 0.02      # empty share of a closed container below which it is full
     legalize_rounds: int = 10
     legalize_shrink: float = 0.005
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
@@ -75,11 +87,12 @@ class Result:
 
     center: np.ndarray
     angle: np.ndarray
-    scale: float
+    scale: float                   # the scale of group 0 (the shared scale)
     iterations: int
     seconds: float
     cancelled: bool
     stats: dict = field(default_factory=dict)
+    unit_scale: np.ndarray | None = None   # (N,) global scale of each unit's group
 
 
 def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
@@ -91,8 +104,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     layer_t = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
     half_w0 = torch.as_tensor(p.half_w * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
     half_h0 = torch.as_tensor(p.half_h * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
-    radius = float(np.mean(np.hypot(p.half_w, p.half_h))) * p.scale
-    log_scale = torch.tensor(math.log(p.scale), device=dev)
+    ctl = _Scales(p)
+    radius = float(np.mean(np.hypot(p.half_w, p.half_h) * ctl.unit_scale()))
     place = p.placement
     params = [{"params": place.parameters(), "lr": p.lr * radius}]
     if place.angle_params():
@@ -101,6 +114,10 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     rotating = place.rotating()
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
                     for a, fs in enumerate(p.forces) if fs]
+    # marks stay on the canvas with all their ink (rotating ones with their box's circle)
+    ink = np.where(rotating[:, None], np.hypot(p.half_w, p.half_h)[:, None],
+                   np.stack([p.half_w, p.half_h], 1))
+    ink_t = torch.as_tensor(ink, device=dev, dtype=torch.float32)
 
     iteration, best, since_best, phase = 0, math.inf, 0, "settle"
     polish_left = p.polish_iterations
@@ -112,21 +129,22 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     window_start, travelling, last_overlap = place.transforms()[0].detach().clone(), p.travelling, math.inf
     stage = np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage)
     poured, poured_at = 0, 0
+    room = np.zeros(ctl.count, dtype=bool)
     if stage.max() > 0:
         place.hold(stage > poured)
     while True:
         if cancel is not None and cancel():
             cancelled = True
             break
-        scale = torch.exp(log_scale)
+        scale = ctl.unit_tensor(dev)
         center, angle = place.transforms()
         hw, hh = scale * half_w0, scale * half_h0
         groups = plan_groups(hw.detach().cpu().numpy(), hh.detach().cpu().numpy(), p.sprite,
                              p.sprite_sides, rotating, p.grid.rho)
         values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
         loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
-        if phase == "polish":
-            weight = p.force_weight * p.polish_force
+        if phase == "polish":   # legalising rounds: no force presses the marks together
+            weight = p.force_weight * p.polish_force * (rounds == 0)
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle
             weight = p.force_travel if travelling else p.force_weight
         for members, fs in force_layers:
@@ -135,13 +153,14 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         optimizer.zero_grad(set_to_none=True)
         loss.backward()
         optimizer.step()
-        place.project(p.grid.canvas, iteration)
+        place.project(p.grid.canvas, iteration, ink_t * scale[:, None])
         iteration += 1
         loss_value = float(loss.detach())
         if on_frame is not None and iteration % frame_every == 0:
-            on_frame(_frame(place, float(torch.exp(log_scale.detach()))))
+            on_frame(_frame(place, ctl.unit_scale()))
         if on_progress is not None:
             on_progress(iteration, loss_value, p.terms.stats)
+        overlap_g, outside_g = ctl.crowding(p.terms.layer_sums)
         if phase == "settle":
             # big steps while marks travel freely, small ones once they press on each other
             if loss_value < best * (1 - 1e-3) - 1e-6:
@@ -155,16 +174,19 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             last_overlap = overlap
             gain = max(1.0, gain * 0.7) if crowded else min(gain_max, gain * (1.1 if travelling else 1.05))
             optimizer.param_groups[0]["lr"] = base_lrs[0] * gain
-            if p.free_scale:
-                # the scale grows while marks have room and gives way when they crowd (or, when
-                # too few to crowd, as they leave the container)
-                crowd = max(overlap, p.terms.stats["outside"])
-                if crowd < 0.5 * p.grow_overlap:
-                    log_scale += p.scale_step
-                    since_best = 0
-                elif crowd > 1.5 * p.grow_overlap and not travelling:   # not for transient crowds
-                    log_scale -= p.scale_step
+            # each controlled scale grows while its marks have room and gives way when they
+            # crowd (or, when too few to crowd, as they leave the container)
+            # (poking out is worse than touching: room never grows a scale past a mark outside)
+            crowd = np.maximum(overlap_g, outside_g)
+            grow = ctl.free & ((crowd < 0.5 * p.grow_overlap) | (
+                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < 0.4 * p.grow_overlap)))
+            shrink = ctl.free & ((crowd > 1.5 * p.grow_overlap) | (outside_g > p.grow_overlap)) \
+                & (not travelling)
+            ctl.log += p.scale_step * (grow.astype(float) - shrink.astype(float))
+            if grow.any():
+                since_best = 0
             if iteration % p.patience == 0:
+                room = ctl.room(values.detach(), index, layer_t[owner])
                 # settled when the marks stopped travelling over the last window
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
@@ -176,40 +198,89 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                     poured, poured_at, travelling = poured + 1, iteration, True   # pour the next layer
                     place.hold(stage > poured)
             if (since_best >= p.patience and not travelling) \
-                    or iteration >= p.max_iterations - p.polish_iterations:
+                    or iteration >= p.max_iterations - p.polish_iterations \
+                    - min(p.polish_iterations, p.max_iterations // 10):   # time to legalize
                 phase = "polish"
-                if p.free_scale:
-                    log_scale -= p.polish_shrink
+                ctl.log -= p.polish_shrink * ctl.free
         else:
             polish_left -= 1
             for g, lr0 in zip(optimizer.param_groups, base_lrs):
                 g["lr"] = lr0 * max(polish_left, 1) / p.polish_iterations
             if polish_left <= 0 or iteration >= p.max_iterations:   # max_iterations is a cap
-                if (p.free_scale and p.terms.stats["overlap"] > p.final_overlap
-                        and rounds < p.legalize_rounds and iteration < p.max_iterations):
-                    # still crowded: give up a little scale and polish again
+                bad = (overlap_g > p.final_overlap) | (outside_g > p.final_outside)
+                if bad.any() and rounds < p.legalize_rounds and iteration < p.max_iterations:
+                    # still crowded or poking out: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
-                    log_scale -= max(p.legalize_shrink, p.terms.stats["overlap"])
+                    ctl.log -= bad * np.maximum(p.legalize_shrink, np.maximum(overlap_g, outside_g))
                     continue
                 break
     center, angle = place.transforms()
-    scale = float(torch.exp(log_scale))
+    unit_scale = ctl.unit_scale()
     if on_frame is not None:
-        on_frame(_frame(place, scale))
+        on_frame(_frame(place, unit_scale))
     stats = dict(p.terms.stats, loss=loss_value)
     return Result(center=center.detach().cpu().numpy().astype(np.float64),
                   angle=np.degrees(angle.detach().cpu().numpy().astype(np.float64)),
-                  scale=scale, iterations=iteration, seconds=time.perf_counter() - started,
-                  cancelled=cancelled, stats=stats)
+                  scale=float(np.exp(ctl.log[0])), iterations=iteration,
+                  seconds=time.perf_counter() - started, cancelled=cancelled, stats=stats,
+                  unit_scale=unit_scale.astype(np.float64))
 
 
-def _frame(place: Placement, scale: float) -> np.ndarray:
-    """float32 ``(N, 4)``: x, y, angle (degrees), global scale."""
+class _Scales:
+    """The controlled global scales: one per scale group, as logs ``(G,)``."""
+
+    def __init__(self, p: Problem):
+        self.p = p
+        n_layers = p.terms.penalty.shape[0]
+        self.group = np.zeros(n_layers, int) if p.scale_group is None else np.asarray(p.scale_group)
+        self.count = int(self.group.max()) + 1
+        start = [p.scale] if p.group_scale is None else p.group_scale
+        self.log = np.log(np.asarray(start, dtype=float))
+        self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
+        self.unit_group = self.group[p.layer]
+
+    def unit_scale(self) -> np.ndarray:
+        """``(N,)`` each unit's current scale."""
+        return np.exp(self.log)[self.unit_group]
+
+    def unit_tensor(self, dev) -> torch.Tensor:
+        return torch.as_tensor(self.unit_scale(), dtype=torch.float32, device=dev)
+
+    def crowding(self, sums: np.ndarray):
+        """Overlap and outside shares ``(G,)`` from the loss's per-layer sums ``(3, L)``."""
+        per = np.zeros((3, self.count))
+        np.add.at(per.T, self.group, sums.T)
+        drawn = np.maximum(per[2], 1e-6)
+        return per[0] / drawn, per[1] / drawn
+
+    def room(self, values, index, owner_layer) -> np.ndarray:
+        """Bool ``(G,)``: controlled groups whose closed containers still have room."""
+        p, out = self.p, np.zeros(self.count, dtype=bool)
+        if p.reach is None or not self.free.any():
+            return out
+        size = p.terms.penalty.shape[1]
+        cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
+        cover = cover.cpu().numpy().reshape(p.grid.shape)
+        inside = p.terms.inside.cpu().numpy()
+        scale = self.unit_scale()
+        for g in np.nonzero(self.free)[0]:
+            for layer in np.nonzero(self.group == g)[0]:
+                mine = p.layer == layer
+                if not inside[layer].any():
+                    continue
+                reach = float(np.median(p.reach[mine] * scale[mine])) * p.grid.rho
+                if empty_share(cover, inside[layer].reshape(p.grid.shape), reach) > p.room_target:
+                    out[g] = True
+        return out
+
+
+def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
+    """float32 ``(N, 4)``: x, y, angle (degrees), the unit's global scale."""
     with torch.no_grad():
         center, angle = place.transforms()
         out = torch.empty((center.shape[0], 4), dtype=torch.float32)
         out[:, :2] = center.cpu()
         out[:, 2] = torch.rad2deg(angle).cpu()
-        out[:, 3] = scale
+        out[:, 3] = torch.as_tensor(scale, dtype=torch.float32)
     return out.numpy()

@@ -17,9 +17,11 @@ from scipy.spatial import cKDTree
 from .curves import CurveTrack
 from .emitters import CurveEmitter, GridEmitter
 from .forces import potential
+from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
+DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
 
 
 @dataclass
@@ -72,7 +74,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             spacing = grid_spacing(region, len(idx)) * 0.98
             lattice = fitting_lattice(region, len(idx), spacing, min(float(r.mean()), spacing / 2))
             s.center[idx] = emitter.place(lattice, ranks)
-            s.drift[idx] = emitter.drift(s.center[idx])
+            s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
+                region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
                 s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
@@ -86,6 +89,19 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     jitter = torch.rand((n, 2), generator=generator).numpy() - 0.5
     s.center += jitter * 1e-3 * radius[:, None] * s.movable[:, None]
     return s
+
+
+def _room_ahead(region: Region, center: np.ndarray, direction: np.ndarray, r: np.ndarray):
+    """``(n,)`` in [0, 1]: the share of a full drift (``DRIFT_TRAVEL`` radii) each mark can
+    travel along ``direction (n, 2)`` before its footprint ``r (n,)`` reaches the edge."""
+    travel = DRIFT_TRAVEL * float(r.mean())
+    steps = np.linspace(0.0, travel, 21)[1:]
+    free = np.ones(len(center), dtype=bool)
+    room = np.zeros(len(center))
+    for d in steps:
+        free &= region.depth_at(center + direction * d) >= r
+        room = np.where(free, d, room)
+    return room / travel
 
 
 def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canvas) -> np.ndarray:

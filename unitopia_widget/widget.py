@@ -51,6 +51,8 @@ class UnitoPia(anywidget.AnyWidget):
     covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),
     ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning),
+    ``scales`` ("shared", the default: one global scale, so sizes stay comparable
+    across layers; "independent": each layer its own, so each closed container fills),
     ``title``/``caption`` (text above/below the exported chart), ``legend`` (True, False,
     or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound).
     ``status`` is "idle", "running", "done", "stopped" or "error"; ``stale`` is True when
@@ -260,7 +262,7 @@ class UnitoPia(anywidget.AnyWidget):
         """A failed run keeps the previous layout: show it again instead of the run's last frame."""
         result, units = self._chart.result, self._chart._units
         keep = result is not None and units is not None and len(result.center) == len(units.rows)
-        frame = (np.column_stack([result.center, result.angle, np.full(len(result.angle), result.scale)])
+        frame = (np.column_stack([result.center, result.angle, result.unit_scale])
                  .astype(np.float32).tobytes() if keep else b"")
         self._quiet(frame=frame)
         self._on_error(exc, source="run")

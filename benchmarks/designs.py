@@ -1,0 +1,221 @@
+"""Real designs through the public API, measured from the SVG export.
+
+Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
+by ``<style>`` classes with strokes and groups (``benchmarks/data``),
+heavy-tailed data (lognormal, 100x-700x spreads), margins, tall thin marks,
+blocked layers and emitters. Each design is laid out by ``uw.UnitoPia``,
+exported to SVG, and measured by an independent checker
+(``measure_svg.py``, kept outside the repository; its path is an argument):
+overlap, outside, emptiness (closed containers: the share farther than one
+median mark radius from any ink), area-to-value CV; blocked layers report
+their mean heights (bottom layer first).
+
+    python benchmarks/designs.py --tool /work/shared/tools/measure_svg.py [NAME ...]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import pandas as pd
+from PIL import Image
+
+import unitopia_widget as uw
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+W, H = 800, 600
+
+
+def icon(name: str) -> uw.Mark:
+    return uw.Mark.svg(os.path.join(DATA, name + ".svg"))
+
+
+def lognormal(n: int, spread: float, seed: int) -> np.ndarray:
+    """n lognormal values rescaled so that max / min is exactly ``spread``."""
+    v = np.random.default_rng(seed).lognormal(0.0, 1.0, n)
+    logs = (np.log(v) - np.log(v).min()) / np.ptp(np.log(v)) * math.log(spread)
+    return np.exp(logs)
+
+
+def blob(cx, cy, rx, ry, wobble, seed, n=48):
+    """A hand-drawn-looking closed curve (polygon points)."""
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 2 * math.pi, n, endpoint=False)
+    k = 1 + wobble * np.convolve(np.tile(rng.normal(0, 1, n), 3), np.ones(5) / 5, "same")[n:2 * n]
+    return np.stack([cx + rx * k * np.cos(t), cy + ry * k * np.sin(t)], 1)
+
+
+def ring_path(points) -> str:
+    return "M " + " L ".join(f"{x:.1f} {y:.1f}" for x, y in points) + " Z"
+
+
+def neck_container() -> uw.Container:
+    """Two wobbly lobes joined by a narrow neck (about 50 px wide), a hole in the left one."""
+    pts = []
+    for cx, rx, ry, a0, a1, joint in ((230, 180, 200, 0.13, 2 * math.pi - 0.13, (431, 324)),
+                                      (610, 160, 180, math.pi + 0.14, 3 * math.pi - 0.14, (431, 276))):
+        for a in np.linspace(a0, a1, 40):
+            k = 1 + 0.05 * math.sin(3 * a + cx) + 0.03 * math.sin(7 * a)
+            pts.append((cx + rx * k * math.cos(a), 300 - ry * k * math.sin(a)))
+        pts.append(joint)
+    hole = [(200 + 40 * math.cos(a), 290 + 36 * math.sin(a))
+            for a in np.linspace(0, 2 * math.pi, 24, endpoint=False)]
+    return uw.Container.path(ring_path(pts) + " " + ring_path(hole))
+
+
+def two_piles() -> uw.Container:
+    """A W-shaped vessel: two cups side by side sharing a wall that stops half way up."""
+    pts = [(60, 80), (90, 560), (370, 560), (390, 330), (410, 330), (430, 560), (710, 560), (740, 80)]
+    return uw.Container.polygon(pts)
+
+
+def seesaw() -> uw.Container:
+    """The space above a tilted plank on a pivot."""
+    return uw.Container.polygon([(40, 40), (760, 40), (760, 380), (40, 500)])
+
+
+def design_bubbles():
+    df = pd.DataFrame({"favourites": lognormal(118, 720, 0)})
+    c = neck_container()
+    return dict(df=df, mark="circle", size="favourites", container=c, boundary="closed"), [c]
+
+
+def design_snowflakes():
+    df = pd.DataFrame({"size": lognormal(69, 220, 1)})
+    outer = blob(400, 300, 360, 260, 0.04, 5)
+    word = [(230, 240), (570, 240), (570, 360), (230, 360)]   # the word SNOW: a hole
+    c = uw.Container.path(ring_path(outer) + " " + ring_path(word))
+    return dict(df=df, mark=icon("snowflake"), size="size", margin=0.1, container=c,
+                boundary="closed"), [c]
+
+
+def design_bags(scales="shared"):
+    df = pd.DataFrame({"bag": ["a"] * 60 + ["b"] * 15, "price": lognormal(75, 100, 2)})
+    a = uw.Container.polygon(blob(220, 330, 170, 220, 0.04, 7))
+    b = uw.Container.polygon(blob(590, 330, 170, 220, 0.04, 8))
+    kw = {} if scales == "shared" else {"scales": scales}   # the default, spelled out or not
+    w = uw.UnitoPia(df, mark=icon("bag"), size="price", canvas=(W, H), seed=0, by="bag",
+                    boundary="closed", **kw)
+    w.layer("a").set(container=a)
+    w.layer("b").set(container=b)
+    return w, [a, b]
+
+
+def design_hair():
+    rng = np.random.default_rng(3)
+    df = pd.DataFrame({"length": rng.lognormal(0, 0.5, 90)})
+    c = uw.Container.polygon(blob(400, 300, 300, 170, 0.05, 9))
+    return dict(df=df, mark=icon("strand"), height="length", rotate=True, container=c,
+                boundary="closed"), [c]
+
+
+def design_raindrops():
+    df = pd.DataFrame({"mm": lognormal(80, 30, 4)})
+    c = uw.Container.polygon(blob(400, 300, 280, 250, 0.05, 11))
+    return dict(df=df, mark=icon("raindrop"), size="mm", margin=0.4, orientation="to_center",
+                container=c, boundary="closed"), [c]
+
+
+def design_flowers():
+    df = pd.DataFrame({"year": np.repeat(np.arange(5), 24), "v": lognormal(120, 8, 5)})
+    c = two_piles()
+    w = uw.UnitoPia(df, mark=icon("flower"), size="v", by="year", container=c, canvas=(W, H),
+                    forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
+    for k in range(1, 5):
+        w.layer(str(k)).set(blocks=[str(k - 1)])
+    return w, [c]
+
+
+def design_seesaw():
+    df = pd.DataFrame({"kind": ["work"] * 40 + ["life"] * 40, "hours": lognormal(80, 10, 6)})
+    c = seesaw()
+    w = uw.UnitoPia(df, mark="star", size="hours", by="kind", container=c, canvas=(W, H),
+                    forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
+    w.layer("work").set(emitter=uw.CurveEmitter([(80, 60), (200, 40), (300, 60), (380, 50)]))
+    w.layer("life").set(emitter=uw.CurveEmitter([(420, 50), (520, 40), (620, 60), (740, 50)]),
+                        blocks=["work"])
+    return w, [c]
+
+
+def design_grid():
+    df = pd.DataFrame({"v": np.ones(150)})
+    c = uw.Container.rect(150, 100, 500, 400)
+    return dict(df=df, mark="circle", size="v", container=c, boundary="closed",
+                emitter=uw.GridEmitter(direction=90)), [c]
+
+
+DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
+           "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
+           "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
+           "grid90": design_grid}
+
+
+def build(name):
+    made, containers = DESIGNS[name]()
+    if isinstance(made, dict):
+        df = made.pop("df")
+        made = uw.UnitoPia(df, canvas=(W, H), seed=0, **made)
+    return made, containers
+
+
+def mask_png(containers, path):
+    cov = sum(np.asarray(c.coverage((W, H), 1.0)) for c in containers)
+    Image.fromarray(np.where(cov >= 0.5, 0, 255).astype(np.uint8)).save(path)
+
+
+def measure(name, tool, out):
+    w, containers = build(name)
+    t0 = time.perf_counter()
+    w.run(wait=True)
+    seconds = time.perf_counter() - t0
+    svg, png, mask = (os.path.join(out, f"{name}.{e}") for e in ("svg", "png", "mask.png"))
+    w.save(svg)
+    w.save(png)
+    mask_png(containers, mask)
+    size = w.layers[0].encodings["size"]
+    args = [sys.executable, tool, svg, "--container", mask]
+    if size is not None:
+        values = os.path.join(out, f"{name}.values.json")
+        with open(values, "w") as f:
+            json.dump({str(k): float(v) for k, v in w.df[size].items()}, f)
+        args += ["--values", values]
+    m = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+    table = w.placements
+    heights = [float(table[table.layer == layer.name]["y"].mean()) for layer in w.layers]
+    closed = all(layer.boundary == "closed" for layer in w.layers)
+    return {"design": name, "seconds": seconds, "overlap": m.get("overlap"),
+            "outside": m.get("outside"), "empty": m.get("empty") if closed else None,
+            "cv": m.get("fidelity_cv"), "heights": heights if len(heights) > 1 else None}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("names", nargs="*", default=list(DESIGNS))
+    ap.add_argument("--tool", default="/work/shared/tools/measure_svg.py")
+    ap.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "uw-designs"))
+    a = ap.parse_args(argv)
+    os.makedirs(a.out, exist_ok=True)
+    pct = lambda v: "" if v is None else f"{100 * v:.2f}"  # noqa: E731
+    print("| design | s | overlap % | outside % | empty % | area CV | mean y per layer |")
+    print("|---|---:|---:|---:|---:|---:|---|")
+    for name in a.names:
+        try:
+            r = measure(name, a.tool, a.out)
+        except Exception as exc:   # noqa: BLE001  (a design the engine refuses: say so, go on)
+            print(f"| {name} | failed: {type(exc).__name__}: {exc} |||||", flush=True)
+            continue
+        hs = "" if r["heights"] is None else " ".join(f"{h:.0f}" for h in r["heights"])
+        cv = "" if r["cv"] is None else f"{r['cv']:.3f}"
+        print(f"| {name} | {r['seconds']:.1f} | {pct(r['overlap'])} | {pct(r['outside'])} | "
+              f"{pct(r['empty'])} | {cv} | {hs} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

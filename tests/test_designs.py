@@ -1,0 +1,131 @@
+"""Layouts on harder designs (issue 11): marks that barely fit, edges, emptiness, scales."""
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import ndimage
+import torch
+
+import unitopia_widget as uw
+from unitopia_widget.placement import Placement
+from unitopia_widget.room import empty_share
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+
+def discs_inside_rect(table, x0, y0, x1, y1, tol=1.0):
+    """Bool per circle mark: its disc lies within the rectangle (tolerance in px)."""
+    r = table["width"].to_numpy() / 2
+    x, y = table["x"].to_numpy(), table["y"].to_numpy()
+    return (x - r >= x0 - tol) & (x + r <= x1 + tol) & (y - r >= y0 - tol) & (y + r <= y1 + tol)
+
+
+def emptiness(table, inside: np.ndarray) -> float:
+    """The checker's emptiness of circle marks: share of ``inside (H, W)`` farther than one
+    median radius from any disc."""
+    h, w = inside.shape
+    yy, xx = np.mgrid[0:h, 0:w] + 0.5
+    ink = np.zeros((h, w), bool)
+    for x, y, d in table[["x", "y", "width"]].to_numpy():
+        ink |= (xx - x) ** 2 + (yy - y) ** 2 <= (d / 2) ** 2
+    far = ndimage.distance_transform_edt(~ink) > np.median(table["width"]) / 2
+    return float((far & inside).sum() / inside.sum())
+
+
+def test_a_mark_too_large_for_its_open_container_shrinks_the_scale():
+    # fill 0.5 of a 200 x 100 box: the data-true largest disc would be 103 px across
+    df = pd.DataFrame({"v": [100.0] + [1.0] * 20})
+    c = uw.Chart(df, size="v", canvas=(400, 300), boundary="open", iterations=200,
+                 container=uw.Container.rect(100, 100, 200, 100))
+    table = c.layout()
+    assert table["width"].max() <= 100.0
+    assert discs_inside_rect(table, 100, 100, 300, 200, tol=2.0).all()
+    area = (table["width"] / 2) ** 2
+    np.testing.assert_allclose(area / df["v"], (area / df["v"]).iloc[0], rtol=1e-9)  # data-true
+
+
+def test_projection_keeps_each_mark_s_ink_on_the_canvas():
+    center = np.array([[-5.0, 10.0], [150.0, 199.0], [150.0, 100.0]])
+    place = Placement(center, np.zeros(3), np.ones(3, bool), np.zeros(3, bool), "cpu")
+    half = torch.tensor([[20.0, 20.0], [10.0, 30.0], [400.0, 10.0]])   # the last wider than the canvas
+    place.project((300, 200), 0, half)
+    np.testing.assert_allclose(place.t.detach().numpy(), [[20, 20], [150, 170], [150, 100]])
+
+
+def test_a_grid_emitter_with_a_direction_keeps_every_mark_inside():
+    df = pd.DataFrame({"v": np.ones(60)})
+    c = uw.Chart(df, canvas=(500, 400), boundary="closed", iterations=200,
+                 container=uw.Container.rect(100, 50, 300, 300),
+                 emitter=uw.GridEmitter(direction=90))
+    table = c.layout()
+    assert discs_inside_rect(table, 100, 50, 400, 350, tol=3.0).all()   # a fifth of a radius
+
+
+def test_a_heavy_tailed_closed_layout_leaves_no_room_for_a_typical_mark():
+    v = np.exp(np.random.default_rng(0).normal(0, 1, 40))
+    v = np.exp((np.log(v) - np.log(v).min()) / np.ptp(np.log(v)) * np.log(100))   # 100x spread
+    c = uw.Chart(pd.DataFrame({"v": v}), size="v", canvas=(400, 300), boundary="closed",
+                 container=uw.Container.ellipse(200, 150, 180, 130), iterations=300)
+    table = c.layout()
+    yy, xx = np.mgrid[0:300, 0:400] + 0.5
+    inside = ((xx - 200) / 180) ** 2 + ((yy - 150) / 130) ** 2 <= 1
+    assert emptiness(table, inside) < 0.05
+    assert c.result.stats["overlap"] < 0.01
+
+
+def test_independent_scales_fill_both_containers():
+    df = pd.DataFrame({"g": ["a"] * 30 + ["b"] * 6, "v": np.ones(36)})
+    boxes = {"a": (20, 20, 160, 160), "b": (220, 20, 160, 160)}
+
+    def chart(scales):
+        c = uw.Chart(df, by="g", canvas=(400, 200), boundary="closed", iterations=200,
+                     scales=scales)
+        for name, box in boxes.items():
+            c.layer(name).set(container=uw.Container.rect(*box))
+        return c
+
+    def density(table, name):
+        part = table[table.layer == name]
+        return float((np.pi * (part["width"] / 2) ** 2).sum()) / (160 * 160)
+
+    shared, own = chart("shared").layout(), chart("independent").layout()
+    assert density(shared, "b") < 0.3                     # one scale: the few marks stay small
+    assert density(own, "a") > 0.6 and density(own, "b") > 0.6
+    assert shared["width"].nunique() == 1 and own.groupby("layer")["width"].nunique().max() == 1
+
+
+def test_scales_round_trip_in_the_design_json(tmp_path):
+    df = pd.DataFrame({"v": [1.0, 2.0]})
+    c = uw.Chart(df, scales="independent")
+    assert c.design()["scales"] == "independent"
+    path = tmp_path / "d.json"
+    c.save(path)
+    again = uw.Chart(df)
+    again.apply_design(json.loads(path.read_text()))
+    assert again.scales == "independent"
+    old = c.design()
+    del old["scales"]                                     # files without the key: shared
+    again.apply_design(old)
+    assert again.scales == "shared"
+
+
+def test_a_bad_scales_value_names_it_and_keeps_the_design():
+    df = pd.DataFrame({"v": [1.0]})
+    with pytest.raises(ValueError, match=r"scales must be 'shared' .* or 'independent' .*got 'own'"):
+        uw.Chart(df, scales="own")
+    c = uw.Chart(df)
+    bad = dict(c.design(), scales=3)
+    with pytest.raises(ValueError, match=r"design: scales must be .* got 3"):
+        c.apply_design(bad)
+    assert c.scales == "shared"
+
+
+def test_empty_share_counts_the_container_far_from_any_mark():
+    inside = np.zeros((10, 20))
+    inside[:, :] = 1
+    cover = np.zeros((10, 20))
+    cover[:, :10] = 1                                     # the left half covered
+    # pixels more than 3 px from the cover: columns 13..19 of 20
+    assert empty_share(cover, inside, 3.0) == pytest.approx(7 / 20)
+    assert empty_share(np.ones((10, 20)), inside, 3.0) == 0.0
