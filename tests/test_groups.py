@@ -47,7 +47,7 @@ def outline(el) -> list:
 
 
 def check_packed(chart, values, label):
-    svg = chart.to_svg()
+    svg = chart.to_svg(legend=False)
     m = ink_metrics(svg, chart.canvas, ellipse=ELLIPSE)
     rows = [str(r) for r in chart.placements["row"]]
     ratio = np.array([m["areas"][r] for r in rows]) / values.loc[chart.placements["row"]].to_numpy()
@@ -94,7 +94,7 @@ def test_shape_dict_gives_each_category_its_own_mark():
     drawn = [layer.marks[k] for k in chart._units.mark]
     assert drawn == [uw.Mark.from_spec(marks[v]) for v in df["kind"]]
     chart.layout()
-    svg = chart.to_svg()
+    svg = chart.to_svg(legend=False)
     defs = {d.get("id"): outline(d) for d in ET.fromstring(svg).find("s:defs", NS)}
     assert len(defs) == 3
     for row, def_id in used_defs(svg).items():   # each unit draws its category's own design
