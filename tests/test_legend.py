@@ -87,12 +87,13 @@ def test_legend_grows_the_svg_beside_the_canvas_and_can_be_left_out(chart):
         return [float(v) for v in ET.fromstring(svg).get("viewBox").split()]
     assert view(chart.to_svg(legend=False, title=""))[2:] == [800, 500]
     assert 'class="legend"' not in chart.to_svg(legend=False)
+    border = 8   # the quiet border around a page with a legend
     x, y, w, h = view(chart.to_svg(legend="right", title=""))
-    assert x == 0 and w > 800
+    assert x == -border and w > 800 + 2 * border
     x, y, w, h = view(chart.to_svg(legend="left", title=""))
-    assert x < 0 and x + w == pytest.approx(800, abs=0.01)
+    assert x < -border and x + w == pytest.approx(800 + border, abs=0.01)
     x, y, w, h = view(chart.to_svg(legend="bottom", title=""))
-    assert y == 0 and h > 500
+    assert y == -border and h > 500 + 2 * border
     x, y, w, h = view(chart.to_svg(legend="top", title=""))
     assert y < 0
     root = ET.fromstring(chart.to_svg(legend=[20, 30], title=""))
@@ -182,3 +183,45 @@ def test_a_size_legend_of_big_marks_keeps_to_the_ends_of_the_range():
     c.layout()
     svg = c.to_svg()
     assert [float(g.get("data-value")) for g in entries(svg, "size")] == [1, 4]
+
+
+def test_shape_legend_draws_each_category_with_its_own_mark():
+    df = pd.DataFrame({"fruit": ["pear", "apple", "plum"] * 8, "kg": np.linspace(1, 9, 24)})
+    c = uw.Chart(df, mark={"apple": "circle", "pear": "triangle", "plum": "star"}, shape="fruit",
+                 color="fruit", size="kg", iterations=30)
+    c.layout()
+    svg = c.to_svg()
+    found = entries(svg, "shape")
+    assert [g.get("data-value") for g in found] == ["apple", "pear", "plum"]
+    defs = {d.get("id"): ET.tostring(d, encoding="unicode")
+            for d in ET.fromstring(svg).iter(f"{SVG}g") if d.get("id")}
+    drawn = [defs[g.find(f"{SVG}use").get("href")[1:]] for g in found]
+    assert len(set(drawn)) == 3                                    # three distinct marks
+    colors = dict(zip(df.loc[c._units.rows, "fruit"], c._units.colors))
+    for g, fragment in zip(found, drawn):
+        assert colors[g.get("data-value")] in fragment               # shape and colour agree
+    # the size legend stays area-true when the units draw marks of different shapes
+    units = c._units
+    silhouette = c.placements["width"] * c.placements["height"] * units.fill_fraction
+    per_value = np.median(silhouette / df.loc[c.placements["row"], "kg"].to_numpy())
+    for g in entries(svg, "size"):
+        sx, sy = scale_of(g.find(f"{SVG}use").get("transform"))
+        mark = c.layers[0].mark
+        bw, bh = mark.box_size
+        area = sx * sy * bw * bh * mark.fill_fraction
+        assert area / float(g.get("data-value")) == pytest.approx(per_value, rel=0.05)
+
+
+def test_colour_of_another_column_is_keyed_with_a_plain_disc_when_a_layer_draws_several_marks():
+    df = pd.DataFrame({"fruit": ["pear", "apple"] * 6, "ripe": ["yes", "no", "no"] * 4})
+    c = uw.Chart(df, mark=["triangle", "star"], shape="fruit", color="ripe", iterations=20)
+    c.layout()
+    svg = c.to_svg()
+    assert [g.get("data-value") for g in entries(svg, "color")] == ["no", "yes"]
+    assert [g.get("data-value") for g in entries(svg, "shape")] == ["apple", "pear"]
+    defs = {d.get("id"): ET.tostring(d, encoding="unicode")
+            for d in ET.fromstring(svg).iter(f"{SVG}g") if d.get("id")}
+    disc = re.search(r' d="([^"]+)"', uw.Mark.shape("circle").svg_fragment("p", "#000")).group(1)
+    for g in entries(svg, "color"):
+        fragment = defs[g.find(f"{SVG}use").get("href")[1:]]
+        assert f' d="{disc}"' in fragment                              # drawn as the disc

@@ -19,6 +19,8 @@ import numpy as np
 import pandas as pd
 
 from .encodings import is_css_color, palette_for
+from .groups import sorted_categories
+from .marks import Mark
 
 FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)
@@ -106,6 +108,7 @@ def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray, room: float = n
     rows = df.loc[units.rows]
     out = []
     out.extend(_color_sections(rows, layers, units))
+    out.extend(_shape_sections(rows, layers, units))
     out.extend(_size_sections(rows, layers, units, boxes, room))
     out.append(_unit_key(layers, units))
     return out
@@ -120,7 +123,10 @@ def _color_sections(rows, layers, units) -> list[Section]:
             columns.append(c)
     for c in columns:
         users = [i for i, layer in enumerate(layers) if layer.encodings["color"] == c]
-        mark = layers[users[0]].mark
+        if all(layers[i].encodings["shape"] == c for i in users):
+            continue   # the shape section draws these categories in their colours
+        # a category's colour on the layer's mark; a plain disc when the layer draws several
+        mark = layers[users[0]].mark if len(layers[users[0]].marks) == 1 else _disc()
         series = rows[c][np.isin(units.layer, users)]
         if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
             v = series.to_numpy(dtype=float, na_value=np.nan)
@@ -138,6 +144,34 @@ def _color_sections(rows, layers, units) -> list[Section]:
     return out
 
 
+def _disc():
+    return Mark.shape("circle")
+
+
+def _shape_sections(rows, layers, units) -> list[Section]:
+    """One section per layer with ``shape=``: each category drawn with its own mark (in the
+    category's colour when colour encodes the same column, else the layer's key colour)."""
+    out = []
+    for i, layer in enumerate(layers):
+        c = layer.encodings["shape"]
+        if not (isinstance(c, str) and c in rows.columns):
+            continue
+        mine = np.flatnonzero(units.layer == i)
+        first = {}   # category -> its first unit: that unit's mark is the category's mark
+        for k, value in zip(mine, rows[c].to_numpy()[mine]):
+            first.setdefault(value, k)
+        same_colour = layer.encodings["color"] == c
+        title = f"Shape: {clip(c)}" + (f" (layer {clip(layer.name, 20)})" if len(layers) > 1 else "")
+        sec = Section(title)
+        for value in sorted_categories(pd.Series(list(first))):
+            k = first[value]
+            mark = layer.marks[units.mark[k]]
+            color = units.colors[k] if same_colour else neutral(layer, units, i)
+            sec.entries.append(Entry("shape", str(value), clip(value), mark, color, *_swatch(mark)))
+        out.append(sec)
+    return out
+
+
 def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
     """One section per size column; layers sharing a column and its area per value share it."""
     out = []
@@ -148,7 +182,8 @@ def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
             mine = units.layer == i
             values = rows[c].to_numpy(dtype=float)[mine]
             # silhouette area per unit of value: the same for layers whose sizes are shared
-            per_value = float(np.median(boxes[mine, 0] * boxes[mine, 1] / values)) * layer.mark.fill_fraction
+            silhouette = boxes[mine, 0] * boxes[mine, 1] * units.fill_fraction[mine]
+            per_value = float(np.median(silhouette / values))
             by_column.setdefault(c, []).append((i, per_value, values))
     for c, found in by_column.items():
         groups = []

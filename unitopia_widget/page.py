@@ -18,6 +18,7 @@ POSITIONS = ("right", "bottom", "left", "top")
 TITLE_CHARS, CAPTION_CHARS = 200, 2000
 TITLE_FONT, CAPTION_FONT = 18, 12
 GAP = 16   # px between the canvas and what is beside it
+BORDER = 8  # px around a page that has a legend, title or caption
 
 
 @dataclass
@@ -85,6 +86,8 @@ def compose(canvas, sections=None, position="right", title=None, caption=None) -
         parts.append(f'<text class="caption" x="{x0:.1f}" y="{y1 + GAP / 2:.1f}" '
                      f'font-size="{CAPTION_FONT}" font-family="sans-serif" fill="#444">{spans}</text>')
         y1 += GAP / 2 + CAPTION_FONT * 1.3 * len(lines) + GAP / 2
+    if parts:   # a quiet border, so text never touches the page's edge
+        x0, y0, x1, y1 = x0 - BORDER, y0 - BORDER, x1 + BORDER, y1 + BORDER
     return Page(view=(x0, y0, x1 - x0, y1 - y0), overlay="".join(parts))
 
 
