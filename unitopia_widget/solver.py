@@ -74,7 +74,7 @@ class Problem:
     final_outside: float = 0.001   # outside share a layout must reach (scale shrinks until)
     room_target: float = 0.02      # empty share of a closed container below which it is full
     relocate_share: float = 0.05   # share of a roomy layer's marks moved into holes per window
-    legalize_rounds: int = 10
+    legalize_rounds: int = 20
     legalize_shrink: float = 0.005
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
