@@ -74,7 +74,8 @@ class Problem:
     final_outside: float = 0.001   # outside share a layout must reach (scale shrinks until)
     room_target: float = 0.02      # empty share of a closed container below which it is full
     relocate_share: float = 0.05   # share of a roomy layer's marks moved into holes per window
-    legalize_rounds: int = 20
+    legalize_rounds: int = 10
+    legalize_rounds_open: int = 20  # when no scale fills a container (forces press open piles)
     legalize_shrink: float = 0.005
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
@@ -215,7 +216,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 g["lr"] = lr0 * max(polish_left, 1) / p.polish_iterations
             if polish_left <= 0 or iteration >= p.max_iterations:   # max_iterations is a cap
                 bad = (overlap_g > p.final_overlap) | (outside_g > p.final_outside)
-                if bad.any() and rounds < p.legalize_rounds and iteration < p.max_iterations:
+                limit = p.legalize_rounds if ctl.free.any() else p.legalize_rounds_open
+                if bad.any() and rounds < limit and iteration < p.max_iterations:
                     # still crowded or poking out: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
