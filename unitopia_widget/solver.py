@@ -33,6 +33,7 @@ from .forces import potential
 from .losses import CanvasLoss, CanvasTerms
 from .placement import Placement
 from .raster import RasterGrid, plan_groups, render_samples
+from .relocate import holes, unit_overlap
 from .room import empty_share
 
 
@@ -72,7 +73,9 @@ class Problem:
     final_overlap: float = 0.001   # overlap share a layout must reach (scale shrinks until)
     final_outside: float = 0.001   # outside share a layout must reach (scale shrinks until)
     room_target: float = 0.02      # empty share of a closed container below which it is full
+    relocate_share: float = 0.05   # share of a roomy layer's marks moved into holes per window
     legalize_rounds: int = 10
+    legalize_rounds_open: int = 20  # when no scale fills a container (forces press open piles)
     legalize_shrink: float = 0.005
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
@@ -187,6 +190,11 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 since_best = 0
             if iteration % p.patience == 0:
                 room = ctl.room(values.detach(), index, layer_t[owner])
+                # jammed: room left, yet the overlap keeps the scale from growing
+                jammed = room & (overlap_g > 0.5 * p.grow_overlap)
+                if jammed.any() and iteration < p.max_iterations // 4 and \
+                        _relocate(p, ctl, place, optimizer, jammed, values.detach(), index, owner):
+                    since_best = min(since_best, p.patience // 2)   # marks moved: settle a little more
                 # settled when the marks stopped travelling over the last window
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
@@ -208,7 +216,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 g["lr"] = lr0 * max(polish_left, 1) / p.polish_iterations
             if polish_left <= 0 or iteration >= p.max_iterations:   # max_iterations is a cap
                 bad = (overlap_g > p.final_overlap) | (outside_g > p.final_outside)
-                if bad.any() and rounds < p.legalize_rounds and iteration < p.max_iterations:
+                limit = p.legalize_rounds if ctl.free.any() else p.legalize_rounds_open
+                if bad.any() and rounds < limit and iteration < p.max_iterations:
                     # still crowded or poking out: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
@@ -273,6 +282,41 @@ class _Scales:
                 if empty_share(cover, inside[layer].reshape(p.grid.shape), reach) > p.room_target:
                     out[g] = True
         return out
+
+
+def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.ndarray,
+              values, index, owner) -> bool:
+    """Move the most overlapped free marks of roomy closed layers into their holes
+    (``relocate.py``) and forget their Adam momentum. Returns whether any moved."""
+    size = p.terms.penalty.shape[1]
+    overlap = unit_overlap(values, index, owner, len(p.layer), size)
+    cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
+    cover = cover.cpu().numpy().reshape(p.grid.shape)
+    inside = p.terms.inside.cpu().numpy()
+    scale = ctl.unit_scale()
+    reach = p.reach * scale * p.grid.rho
+    # the disc a mark's footprint needs at any angle: its long half side, with margin
+    radius = np.maximum(p.half_w, p.half_h) * (1 + 2 * p.margin) * scale * p.grid.rho
+    free = place.keep[:, 0].cpu().numpy() > 0
+    for track in place.tracks:
+        free[track.index.cpu().numpy()] = False
+    state, moved = optimizer.state.get(place.t, {}), False
+    for g in np.nonzero(room)[0]:
+        for layer in np.nonzero(ctl.group == g)[0]:
+            mine = p.layer == layer
+            if not inside[layer].any():
+                continue
+            limit = max(1, int(p.relocate_share * mine.sum()))
+            moves = holes(cover, inside[layer].reshape(p.grid.shape), overlap, radius,
+                          np.nonzero(mine & free)[0], p.grid, 1.5 * float(np.median(reach[mine])), limit)
+            with torch.no_grad():
+                for unit, (x, y) in moves:
+                    place.t[unit, 0], place.t[unit, 1] = x, y
+                    for key in ("exp_avg", "exp_avg_sq"):
+                        if key in state:
+                            state[key][unit] = 0.0
+            moved = moved or bool(moves)
+    return moved
 
 
 def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
