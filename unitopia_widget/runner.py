@@ -18,6 +18,7 @@ class Runner:
         self.min_interval = 1.0 / fps
         self._thread: threading.Thread | None = None
         self._cancel = threading.Event()
+        self._ended = threading.Event()   # set when the current run's thread has finished
         self._lock = threading.Lock()
         self._starting = threading.Lock()   # concurrent start() calls (front-end messages) queue up
         self.generation = 0
@@ -25,7 +26,7 @@ class Runner:
 
     @property
     def running(self) -> bool:
-        return self._thread is not None and self._thread.is_alive()
+        return self._thread is not None and not self._ended.is_set()
 
     def start(self, job: Callable, on_frame: Callable, on_done: Callable, on_error: Callable) -> None:
         """Run ``job(on_frame=..., cancel=...)`` in a thread, replacing any current run.
@@ -42,6 +43,7 @@ class Runner:
             self.generation += 1
             generation = self.generation
             cancel = self._cancel = threading.Event()
+            ended = self._ended = threading.Event()
             self.error = None
         last = [0.0]
         held = [None]   # the newest frame the throttle held back
@@ -63,10 +65,13 @@ class Runner:
                     self.error = exc
                     on_error(exc)
                 return
-            if generation == self.generation:
-                if held[0] is not None:   # the last frame always arrives: it is the layout
-                    on_frame(held[0])
-                on_done(result)
+            else:
+                if generation == self.generation:
+                    if held[0] is not None:   # the last frame always arrives: it is the layout
+                        on_frame(held[0])
+                    on_done(result)
+            finally:
+                ended.set()
 
         thread = threading.Thread(target=work, name="unitopia-layout", daemon=True)
         thread.start()
@@ -77,6 +82,9 @@ class Runner:
         thread = self._thread
         self._cancel.set()
         if thread is not None and thread is not threading.current_thread():
+            # the run's own end signal: a join() cut short by a KeyboardInterrupt can leave
+            # CPython's thread state saying "ended" while the thread still finishes
+            self._ended.wait()
             thread.join()
 
     def wait(self, timeout: float | None = None) -> None:
