@@ -131,13 +131,18 @@ def _order(df, column) -> np.ndarray:
     return ranks
 
 
+def sorted_unique(series: pd.Series) -> list:
+    """The distinct values of ``series``, sorted when they compare (else first-seen order)."""
+    uniq = pd.unique(series)
+    try:
+        return sorted(uniq)
+    except TypeError:
+        return list(uniq)
+
+
 def palette_for(values) -> dict:
     """A categorical palette: one colour per distinct value, in sorted order."""
-    uniq = pd.unique(pd.Series(list(values)))
-    try:
-        uniq = sorted(uniq)
-    except TypeError:
-        pass
+    uniq = sorted_unique(pd.Series(list(values)))
     return {v: CATEGORICAL[i % len(CATEGORICAL)] for i, v in enumerate(uniq)}
 
 

@@ -11,16 +11,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .encodings import check_column
+from .encodings import check_column, sorted_unique
 
 
 def sorted_categories(series: pd.Series) -> list:
-    """The distinct values of ``series``, sorted when they compare (else first-seen order)."""
-    values = pd.unique(series.dropna())
-    try:
-        return sorted(values)
-    except TypeError:
-        return list(values)
+    """The distinct non-missing values of ``series``, in the order palettes use."""
+    return sorted_unique(series.dropna())
 
 
 def mark_choice(df: pd.DataFrame, sub: pd.DataFrame, layer) -> np.ndarray:
