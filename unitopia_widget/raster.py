@@ -108,17 +108,9 @@ def _patch_side(extent: np.ndarray) -> np.ndarray:
     return sides[pos]
 
 
-def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
-                sprite_sides: list[int], rotating: np.ndarray, rho: float):
-    """Group marks by (sprite, level, patch shape).
-
-    ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
-    ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
-    ``sprite_sides``: long side of each sprite's finest level, texels.
-    ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
-    any rotation, others a box patch.
-    Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
-    """
+def group_keys(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
+               sprite_sides: list[int], rotating: np.ndarray, rho: float) -> np.ndarray:
+    """``(N, 4)`` int: each mark's (sprite, level, patch_h, patch_w); see ``plan_groups``."""
     long_px = 2.0 * np.maximum(half_w, half_h) * rho
     radius = np.hypot(half_w, half_h) * rho
     ext_w = np.where(rotating, 2 * radius, 2 * half_w * rho) + 2.0
@@ -128,13 +120,68 @@ def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
     # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
     level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
     level = np.minimum(level, int(np.log2(max(sprite_sides) / 4)))   # the coarsest level is 4 texels
-    key = np.stack([sprite_ids, level, ph, pw], axis=1)
-    uniq, inverse = np.unique(key, axis=0, return_inverse=True)
-    inverse = inverse.reshape(-1)
+    return np.stack([sprite_ids, level, ph, pw], axis=1)
+
+
+def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
+                sprite_sides: list[int], rotating: np.ndarray, rho: float, keys=None):
+    """Group marks by (sprite, level, patch shape).
+
+    ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
+    ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
+    ``sprite_sides``: long side of each sprite's finest level, texels.
+    ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
+    any rotation, others a box patch. ``keys``: ``group_keys`` already computed.
+    Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
+    """
+    key = group_keys(half_w, half_h, sprite_ids, sprite_sides, rotating, rho) if keys is None else keys
+    # one integer per key (each column is small and non-negative): a 1-D unique is cheap
+    code = ((key[:, 0].astype(np.int64) * 64 + key[:, 1]) * 2048 + key[:, 2]) * 2048 + key[:, 3]
+    uniq, first, inverse = np.unique(code, return_index=True, return_inverse=True)
     order = np.argsort(inverse, kind="stable")
     bounds = np.searchsorted(inverse[order], np.arange(len(uniq) + 1))
-    return [(order[bounds[g]:bounds[g + 1]], int(u[0]), int(u[1]), int(u[2]), int(u[3]))
-            for g, u in enumerate(uniq)]
+    return [(order[bounds[g]:bounds[g + 1]], *(int(v) for v in key[first[g]]))
+            for g in range(len(uniq))]
+
+
+class RenderPlan:
+    """The groups of ``plan_groups`` prepared on the device for ``render_samples``.
+
+    ``parts``: one per ``grid_sample`` call, ``(indices (n,) long, sprite id or
+    (n,) sprite tensor for an atlas, level, ph, pw)``; ``owner (M,)``: the mark
+    of each sample, in render order. A plan stays valid while no mark changes
+    group (``Planner``), so nothing here is rebuilt every iteration.
+    """
+
+    def __init__(self, groups, pyramids, device):
+        from .atlas import SpriteAtlas
+
+        self.atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
+        self.pyramids = pyramids
+        self.parts = []
+        for idx, sprite, level, ph, pw in (self.atlas.merge(groups) if self.atlas else groups):
+            if self.atlas is not None:
+                sprite = sprite.to(device)
+            self.parts.append((torch.as_tensor(idx, device=device), sprite, level, ph, pw))
+        self.owner = torch.cat([idx.repeat_interleave(ph * pw) for idx, _, _, ph, pw in self.parts])
+
+
+class Planner:
+    """Builds a ``RenderPlan`` when the marks' groups change, and reuses it otherwise."""
+
+    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, rho, device):
+        self.args = (sprite_ids, sprite_sides, rotating)
+        self.pyramids, self.rho, self.device = pyramids, rho, device
+        self.keys, self.current = None, None
+
+    def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
+        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
+        sprite_ids, sides, rotating = self.args
+        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.rho)
+        if self.keys is None or not np.array_equal(keys, self.keys):
+            groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.rho, keys)
+            self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device)
+        return self.current
 
 
 def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tensor,
@@ -143,43 +190,43 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
 
     ``center``: ``(N, 2)`` canvas px; ``angle``: ``(N,)`` radians;
     ``half_w``, ``half_h``: ``(N,)`` canvas px. All may carry gradients.
+    ``groups``: a ``RenderPlan`` or the list ``plan_groups`` returns.
     ``pyramids`` is a list of sprite pyramids or a ``SpriteAtlas`` of them (then
     groups that differ only in their sprite render in one call).
     Returns ``values (M,)`` (alpha, differentiable), ``index (M,)`` (flat
     raster index, long) and ``owner (M,)`` (the mark of each sample, long).
     """
-    from .atlas import SpriteAtlas
-
+    plan = groups if isinstance(groups, RenderPlan) else RenderPlan(groups, pyramids, center.device)
     rho, pad = grid.rho, grid.pad
     height, width = grid.shape
-    values, indices, owners = [], [], []
-    atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
-    for idx_np, sprite_id, level, ph, pw in (atlas.merge(groups) if atlas else groups):
-        idx = torch.as_tensor(idx_np, device=center.device)
+    values, indices = [], []
+    dev, dtype = center.device, center.dtype
+    cos_all, sin_all = torch.cos(angle), torch.sin(angle)
+    for idx, sprite_id, level, ph, pw in plan.parts:
         c = center[idx] * rho + pad                                     # (n, 2) raster px
-        a = angle[idx]
-        cos, sin = torch.cos(a)[:, None, None], torch.sin(a)[:, None, None]
-        size = torch.tensor([pw, ph], device=c.device, dtype=c.dtype)
-        limit = torch.tensor([width, height], device=c.device, dtype=c.dtype) - size
+        cos, sin = cos_all[idx], sin_all[idx]
+        size = torch.tensor([pw, ph], device=dev, dtype=dtype)
+        limit = torch.tensor([width, height], device=dev, dtype=dtype) - size
         # patches stay on the raster; a mark beyond the border is cut off there
         origin = torch.minimum(torch.clamp(torch.floor(c.detach() - size / 2), min=0), limit)
-        u = torch.arange(pw, device=c.device, dtype=c.dtype) + 0.5
-        v = torch.arange(ph, device=c.device, dtype=c.dtype) + 0.5
-        dx = (origin[:, None, 0] + u - c[:, 0:1])[:, None, :]              # (n, 1, pw)
-        dy = (origin[:, None, 1] + v - c[:, 1:2])[:, :, None]              # (n, ph, 1)
-        sx = (rho * half_w[idx])[:, None, None]
-        sy = (rho * half_h[idx])[:, None, None]
-        gx = (cos * dx + sin * dy) / sx                                    # (n, ph, pw) sprite x in [-1, 1]
-        gy = (cos * dy - sin * dx) / sy
-        if atlas is None:
-            sprite, sample_grid = pyramids[sprite_id][level], torch.stack([gx, gy], dim=-1)
+        u = torch.arange(pw, device=dev, dtype=dtype) + 0.5
+        v = torch.arange(ph, device=dev, dtype=dtype) + 0.5
+        dx = (origin[:, None, 0] + u - c[:, 0:1])[:, None, :, None]          # (n, 1, pw, 1)
+        dy = (origin[:, None, 1] + v - c[:, 1:2])[:, :, None, None]          # (n, ph, 1, 1)
+        sx, sy = rho * half_w[idx], rho * half_h[idx]
+        # sprite coordinates in [-1, 1]: x = (cos dx + sin dy) / sx, y = (cos dy - sin dx) / sy
+        along_x = torch.stack([cos / sx, -sin / sy], dim=1)[:, None, None, :]   # (n, 1, 1, 2)
+        along_y = torch.stack([sin / sx, cos / sy], dim=1)[:, None, None, :]
+        if plan.atlas is None:
+            sprite = pyramids[sprite_id][level]
+            sample_grid = dx * along_x + dy * along_y                           # (n, ph, pw, 2)
         else:   # sprite_id: (n,) the sprite of each mark, tiles of one texture
-            sprite, sample_grid = atlas.grid(level, sprite_id, gx, gy)
+            sprite, sample_grid = plan.atlas.grid(level, sprite_id, dx * along_x, dy * along_y)
         alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
         o = origin.long()
-        rows = o[:, 1, None] + torch.arange(ph, device=c.device)              # (n, ph)
-        cols = o[:, 0, None] + torch.arange(pw, device=c.device)              # (n, pw)
+        rows = o[:, 1, None] + torch.arange(ph, device=dev)                   # (n, ph)
+        cols = o[:, 0, None] + torch.arange(pw, device=dev)                   # (n, pw)
         if ph > height or pw > width:
             # a patch larger than the raster overhangs it: drop the samples off the raster
             on = ((rows >= 0) & (rows < height))[:, :, None] & ((cols >= 0) & (cols < width))[:, None, :]
@@ -188,9 +235,9 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
         flat = rows[:, :, None] * width + cols[:, None, :]                    # (n, ph, pw)
         values.append(alpha.reshape(-1))
         indices.append(flat.reshape(-1))
-        owners.append(idx.repeat_interleave(ph * pw))
-    return torch.cat(values), torch.cat(indices), torch.cat(owners)
-
+    if len(values) == 1:
+        return values[0], indices[0], plan.owner
+    return torch.cat(values), torch.cat(indices), plan.owner
 
 def accumulate(values: torch.Tensor, index: torch.Tensor, size: int) -> torch.Tensor:
     """Coverage image: the sum of all samples per raster pixel, ``(size,)``."""
