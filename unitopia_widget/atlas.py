@@ -65,13 +65,11 @@ class SpriteAtlas:
             out.append((idx, sprites, level, max(p[2] for p in parts), max(p[3] for p in parts)))
         return out
 
-    def grid(self, level: int, sprites: torch.Tensor, along_x: torch.Tensor, along_y: torch.Tensor):
-        """``(texture, grid (n, ph, pw, 2))``: the sprite coordinates in [-1, 1] of marks
-        drawing ``sprites`` (``along_x + along_y``, the parts from the patch's columns and
-        rows, broadcasting to ``(n, ph, pw, 2)``) mapped into the level's texture (normalised)."""
+    def grid(self, level: int, sprites: torch.Tensor, gx: torch.Tensor, gy: torch.Tensor):
+        """``(texture, grid (n, ph, pw, 2))``: sprite coordinates ``gx, gy`` in [-1, 1]
+        of marks drawing ``sprites`` mapped into the level's texture (normalised)."""
         texture, table = self.levels[level]
         m = table[sprites.to(texture.device)][:, None, None, :]          # (n, 1, 1, 8)
-        gain, shift = m[..., [0, 4]], m[..., [1, 5]]
-        # the affine map applies to each part before the broadcast sum: small tensors
-        coords = (along_x * gain + shift) + along_y * gain
-        return texture, torch.clamp(coords, m[..., [2, 6]], m[..., [3, 7]])
+        x = torch.clamp(gx * m[..., 0] + m[..., 1], m[..., 2], m[..., 3])
+        y = torch.clamp(gy * m[..., 4] + m[..., 5], m[..., 6], m[..., 7])
+        return texture, torch.stack([x, y]).permute(1, 2, 3, 0)   # strided: see render_samples

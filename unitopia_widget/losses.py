@@ -42,7 +42,7 @@ class CanvasTerms:
     #: drawn alpha, covered container), in raster px^2
     sums: torch.Tensor | None = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
-    _fields: torch.Tensor | None = None        # (L, S, 3) penalty, outside, 1: one pass sums all three
+    _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
 
     @property
     def inside_total(self) -> float:
@@ -50,6 +50,13 @@ class CanvasTerms:
         if not hasattr(self, "_inside_total"):
             self._inside_total = float(self.inside.sum())
         return self._inside_total
+
+    @property
+    def has_obstacles(self) -> bool:
+        """Whether some layer blocks on another (read once: the blocks are fixed)."""
+        if not hasattr(self, "_has_obstacles"):
+            self._has_obstacles = bool(self.blocks.any())
+        return self._has_obstacles
 
     @property
     def stats(self) -> dict:
@@ -63,9 +70,23 @@ class CanvasTerms:
         """The zeroed ``(L * S,)`` coverage buffer (allocated once)."""
         if self._cover is None or self._cover.dtype != like.dtype or self._cover.device != like.device:
             self._cover = torch.zeros(self.penalty.numel(), dtype=like.dtype, device=like.device)
-            self._fields = torch.stack([self.penalty, self.outside, torch.ones_like(self.penalty)],
-                                       dim=2).to(like)
+            self._tables = None
         return self._cover
+
+    def tables(self) -> tuple:
+        """Fixed per-pixel tables (made once, in the buffer's dtype and device):
+        ``fields (L, 4, S)`` penalty, outside, inside, 1 (one pass sums all four against
+        the coverage), and the pixel gradient of the loss ``(L, S)`` where the total is
+        over 1, at most 1, under 1 (``under`` is None without fill)."""
+        if self._tables is None:
+            like = self._cover
+            penalty, outside, inside = (t.to(like) for t in (self.penalty, self.outside, self.inside))
+            fields = torch.stack([penalty, outside, inside, torch.ones_like(penalty)], dim=1)
+            mid = self.w_contain * penalty / self.norm
+            over = mid + self.w_overlap / self.norm
+            under = mid - self.w_fill * inside / self.norm if self.w_fill else None
+            self._tables = (fields, over, mid, under)
+        return self._tables
 
 
 def shares(sums, inside_total: float) -> dict:
@@ -97,28 +118,30 @@ class CanvasLoss(torch.autograd.Function):
         cover = terms.buffer(values)
         cover.index_add_(0, flat, values)
         own = cover.view(n_layers, size)
-        penalty, inside = terms.penalty, terms.inside
-        if n_layers > 1 and bool(terms.blocks.any()):
-            total = own + terms.blocks.to(own) @ own                    # T = C + O
+        fields, over, mid, under = terms.tables()
+        # contain, outside, inside . C and drawn alpha per layer: one pass over the slabs
+        per = torch.bmm(fields, own[:, :, None])[..., 0]                       # (L, 4)
+        if n_layers > 1 and terms.has_obstacles:
+            total = own + terms.blocks.to(own) @ own                            # T = C + O
             share = own / total.clamp_min(1e-6)
-            excess = share * torch.relu(total - 1.0)                    # the layer's share
-            covered = (share * inside * total.clamp(max=1.0)).sum(1)
+            excess = share * torch.relu(total - 1.0)                            # the layer's share
+            overlap = excess.sum(1)
+            covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1)
         else:
-            total, excess = own, torch.relu(own - 1.0)
-            covered = (inside * own.clamp(max=1.0)).sum(1)
-        # contain, outside and drawn alpha per layer in one pass over the slabs
-        per = torch.bmm(own[:, None, :], terms._fields)[:, 0]                          # (L, 3)
-        overlap = excess.sum(1)
-        terms.sums = torch.stack([overlap, per[:, 1], per[:, 2], covered]).detach()
+            total = own
+            excess = (own - 1.0).clamp_min_(0.0)
+            # overlap and inside . excess: the container covered is inside . min(C, 1)
+            spilled = torch.bmm(fields[:, 2:], excess[:, :, None])[..., 0]      # (L, 2)
+            overlap, covered = spilled[:, 1], per[:, 2] - spilled[:, 0]
+        terms.sums = torch.stack([overlap, per[:, 1], per[:, 3], covered]).detach()
         gap = terms.inside_total - covered.sum()
-        area = terms.norm
         loss = (terms.w_overlap * overlap.sum() + terms.w_contain * per[:, 0].sum()
-                + terms.w_fill * gap) / area
-        pixel_grad = terms.w_overlap * (total > 1.0).to(own.dtype) + terms.w_contain * penalty
-        if terms.w_fill:
-            pixel_grad = pixel_grad - terms.w_fill * inside * (total < 1.0).to(own.dtype)
-        ctx.save_for_backward(pixel_grad.reshape(-1).index_select(0, flat) / area)
-        cover.zero_()                                                   # leave the buffer zeroed
+                + terms.w_fill * gap) / terms.norm
+        # the pixel gradient, already divided by the norm; gathered at the samples
+        pixel_grad = torch.where(total > 1.0, over, mid if under is None else
+                                 torch.where(total < 1.0, under, mid))
+        ctx.save_for_backward(pixel_grad.reshape(-1).index_select(0, flat))
+        cover.zero_()                                                           # leave the buffer zeroed
         return loss
 
     @staticmethod

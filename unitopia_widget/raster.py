@@ -153,34 +153,53 @@ class RenderPlan:
     group (``Planner``), so nothing here is rebuilt every iteration.
     """
 
-    def __init__(self, groups, pyramids, device):
+    def __init__(self, groups, pyramids, device, grid: RasterGrid):
         from .atlas import SpriteAtlas
 
         self.atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
-        self.pyramids = pyramids
+        height, width = grid.shape
         self.parts = []
         for idx, sprite, level, ph, pw in (self.atlas.merge(groups) if self.atlas else groups):
             if self.atlas is not None:
                 sprite = sprite.to(device)
-            self.parts.append((torch.as_tensor(idx, device=device), sprite, level, ph, pw))
-        self.owner = torch.cat([idx.repeat_interleave(ph * pw) for idx, _, _, ph, pw in self.parts])
+            self.parts.append(_Part(torch.as_tensor(idx, device=device), sprite, level, ph, pw,
+                                    device, width, height))
+        self.owner = torch.cat([part.idx.repeat_interleave(ph * pw) for part in self.parts
+                                for ph, pw in [(part.ph, part.pw)]])
+
+
+class _Part:
+    """One ``grid_sample`` call: its marks ``idx (n,)``, sprite, level and patch ``(ph, pw)``,
+    with the patch's fixed tensors: pixel centres ``u (pw,)``, ``v (ph,)`` (raster px from
+    the patch origin), ``offsets (ph * pw,)`` int32 flat raster offsets, ``size`` and the
+    largest origin ``limit`` (x, y)."""
+
+    def __init__(self, idx, sprite, level, ph, pw, device, width, height):
+        self.idx, self.sprite, self.level, self.ph, self.pw = idx, sprite, level, ph, pw
+        self.u = torch.arange(pw, device=device, dtype=torch.float32) + 0.5
+        self.v = torch.arange(ph, device=device, dtype=torch.float32) + 0.5
+        rows, cols = torch.arange(ph, device=device), torch.arange(pw, device=device)
+        self.offsets = (rows[:, None] * width + cols[None, :]).reshape(-1).to(torch.int32)
+        self.size = torch.tensor([pw, ph], device=device, dtype=torch.float32)
+        self.limit = torch.tensor([width, height], device=device, dtype=torch.float32) - self.size
+        self.overhangs = ph > height or pw > width
 
 
 class Planner:
     """Builds a ``RenderPlan`` when the marks' groups change, and reuses it otherwise."""
 
-    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, rho, device):
+    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, grid: RasterGrid, device):
         self.args = (sprite_ids, sprite_sides, rotating)
-        self.pyramids, self.rho, self.device = pyramids, rho, device
+        self.pyramids, self.grid, self.device = pyramids, grid, device
         self.keys, self.current = None, None
 
     def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
         """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
         sprite_ids, sides, rotating = self.args
-        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.rho)
+        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho)
         if self.keys is None or not np.array_equal(keys, self.keys):
-            groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.rho, keys)
-            self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device)
+            groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, keys)
+            self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device, self.grid)
         return self.current
 
 
@@ -194,45 +213,47 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
     ``pyramids`` is a list of sprite pyramids or a ``SpriteAtlas`` of them (then
     groups that differ only in their sprite render in one call).
     Returns ``values (M,)`` (alpha, differentiable), ``index (M,)`` (flat
-    raster index, long) and ``owner (M,)`` (the mark of each sample, long).
+    raster index, int32) and ``owner (M,)`` (the mark of each sample, long).
     """
-    plan = groups if isinstance(groups, RenderPlan) else RenderPlan(groups, pyramids, center.device)
+    plan = groups if isinstance(groups, RenderPlan) else RenderPlan(groups, pyramids, center.device, grid)
     rho, pad = grid.rho, grid.pad
     height, width = grid.shape
     values, indices = [], []
-    dev, dtype = center.device, center.dtype
     cos_all, sin_all = torch.cos(angle), torch.sin(angle)
-    for idx, sprite_id, level, ph, pw in plan.parts:
+    for part in plan.parts:
+        idx, ph, pw = part.idx, part.ph, part.pw
         c = center[idx] * rho + pad                                     # (n, 2) raster px
-        cos, sin = cos_all[idx], sin_all[idx]
-        size = torch.tensor([pw, ph], device=dev, dtype=dtype)
-        limit = torch.tensor([width, height], device=dev, dtype=dtype) - size
         # patches stay on the raster; a mark beyond the border is cut off there
-        origin = torch.minimum(torch.clamp(torch.floor(c.detach() - size / 2), min=0), limit)
-        u = torch.arange(pw, device=dev, dtype=dtype) + 0.5
-        v = torch.arange(ph, device=dev, dtype=dtype) + 0.5
-        dx = (origin[:, None, 0] + u - c[:, 0:1])[:, None, :, None]          # (n, 1, pw, 1)
-        dy = (origin[:, None, 1] + v - c[:, 1:2])[:, :, None, None]          # (n, ph, 1, 1)
-        sx, sy = rho * half_w[idx], rho * half_h[idx]
-        # sprite coordinates in [-1, 1]: x = (cos dx + sin dy) / sx, y = (cos dy - sin dx) / sy
-        along_x = torch.stack([cos / sx, -sin / sy], dim=1)[:, None, None, :]   # (n, 1, 1, 2)
-        along_y = torch.stack([sin / sx, cos / sy], dim=1)[:, None, None, :]
+        origin = torch.minimum(torch.clamp(torch.floor(c.detach() - part.size / 2), min=0), part.limit)
+        shift = origin - c
+        dx = (shift[:, 0:1] + part.u)[:, None, :]                          # (n, 1, pw)
+        dy = (shift[:, 1:2] + part.v)[:, :, None]                          # (n, ph, 1)
+        cos, sin = cos_all[idx][:, None, None], sin_all[idx][:, None, None]
+        sx = (rho * half_w[idx])[:, None, None]
+        sy = (rho * half_h[idx])[:, None, None]
+        # sprite coordinates in [-1, 1]; the (n, 1, pw) and (n, ph, 1) factors are small, so
+        # each coordinate costs one full-size operation
+        gx = dx * (cos / sx) + dy * (sin / sx)                             # (n, ph, pw)
+        gy = dy * (cos / sy) - dx * (sin / sy)
         if plan.atlas is None:
-            sprite = pyramids[sprite_id][level]
-            sample_grid = dx * along_x + dy * along_y                           # (n, ph, pw, 2)
-        else:   # sprite_id: (n,) the sprite of each mark, tiles of one texture
-            sprite, sample_grid = plan.atlas.grid(level, sprite_id, dx * along_x, dy * along_y)
+            # stacked in front and viewed as (n, ph, pw, 2): grid_sample reads strided grids,
+            # and interleaving the two coordinates in memory would cost more than the sampling
+            sprite, sample_grid = pyramids[part.sprite][part.level], torch.stack([gx, gy]).permute(1, 2, 3, 0)
+        else:   # part.sprite: (n,) the sprite of each mark, tiles of one texture
+            sprite, sample_grid = plan.atlas.grid(part.level, part.sprite, gx, gy)
         alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
-        o = origin.long()
-        rows = o[:, 1, None] + torch.arange(ph, device=dev)                   # (n, ph)
-        cols = o[:, 0, None] + torch.arange(pw, device=dev)                   # (n, pw)
-        if ph > height or pw > width:
+        o = origin.to(torch.int32)
+        if part.overhangs:
             # a patch larger than the raster overhangs it: drop the samples off the raster
+            rows = o[:, 1, None] + torch.arange(ph, device=o.device, dtype=torch.int32)   # (n, ph)
+            cols = o[:, 0, None] + torch.arange(pw, device=o.device, dtype=torch.int32)   # (n, pw)
             on = ((rows >= 0) & (rows < height))[:, :, None] & ((cols >= 0) & (cols < width))[:, None, :]
             alpha = alpha * on.reshape(1, 1, -1, pw).to(alpha.dtype)
             rows, cols = rows.clamp(0, height - 1), cols.clamp(0, width - 1)
-        flat = rows[:, :, None] * width + cols[:, None, :]                    # (n, ph, pw)
+            flat = rows[:, :, None] * width + cols[:, None, :]                        # (n, ph, pw)
+        else:
+            flat = (o[:, 1] * width + o[:, 0])[:, None] + part.offsets[None, :]       # (n, ph * pw)
         values.append(alpha.reshape(-1))
         indices.append(flat.reshape(-1))
     if len(values) == 1:

@@ -117,7 +117,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         params.append({"params": place.angle_params(), "lr": 0.05})
     optimizer = Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
-    planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid.rho, dev)
+    planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev)
     foot_w, foot_h = p.half_w * (1 + 2 * p.margin), p.half_h * (1 + 2 * p.margin)
     n_layers = p.terms.penalty.shape[0]
     readback, plan, sample_layer = Readback(dev), None, None
