@@ -23,10 +23,10 @@ from .encodings import Encoded, check_column, encode, palette_for, unhashable
 from .groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
-from .raster import SPRITE_SIDE, RasterGrid, is_thin, sprite_pyramid
+from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from .scene import block_order
 from .solver import Problem, Result, solve
-from .start import orientation_targets, start_positions
+from .start import any_angle, orientation_targets, start_positions
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
@@ -205,6 +205,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
+    half = np.stack([units.half_w, units.half_h]) * (1 + 2 * units.margin) * unit_scale
+    rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]

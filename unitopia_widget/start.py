@@ -173,3 +173,8 @@ def orientation_targets(units, layers, canvas, device):
         return target, mask
 
     return targets
+
+
+def any_angle(layers) -> bool:
+    """Whether some layer's marks turn or stand at an angle (then every patch holds any rotation)."""
+    return any(turn or abs(angle) > 1e-6 for angle, turn in map(_angles, layers))
