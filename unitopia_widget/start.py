@@ -109,7 +109,8 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
     count = len(r)
     spacing = 2 * float(np.sqrt((r ** 2).mean())) * 1.02
     if layer.boundary == "closed" and layer.fill is None:
-        spacing = min(spacing, grid_spacing(region, count + len(taken)))
+        # spread over the whole container: the scale then grows with no mark to rearrange
+        spacing = grid_spacing(region, count + len(taken))
     lattice = fitting_lattice(region, count + len(taken), spacing, min(float(r.mean()), spacing / 2))
     if len(taken):
         near = cKDTree(taken).query(lattice, k=1)[0]
