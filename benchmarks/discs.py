@@ -97,6 +97,7 @@ def circle_metrics(center: np.ndarray, r: np.ndarray) -> dict:
     i, j = pairs[:, 0], pairs[:, 1]
     overlap = lens_area(np.hypot(*(center[i] - center[j]).T), r[i], r[j]).sum()
     dist = np.hypot(center[:, 0] - CX, center[:, 1] - CY)
-    outside = np.sum(math.pi * r * r - lens_area(dist, r, np.full_like(r, R)))
+    out = dist + r > R   # discs that cross the rim: their area minus the part inside
+    outside = np.sum(math.pi * r[out] ** 2 - lens_area(dist[out], r[out], np.full(out.sum(), R)))
     return {"overlap_%": 100 * float(overlap) / area, "outside_%": 100 * float(outside) / area,
             "density": area / (math.pi * R * R), "mean_y": float(center[:, 1].mean())}
