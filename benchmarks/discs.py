@@ -59,6 +59,15 @@ def lattice_start(r: np.ndarray) -> np.ndarray:
     return inside[order[:len(r)]]
 
 
+def random_start(r: np.ndarray, seed: int = 0) -> np.ndarray:
+    """``(n, 2)`` centres uniform over the container, each disc inside it, overlapping
+    freely: the discs poured in, the way a physics engine is usually started."""
+    rng = np.random.default_rng(seed)
+    angle = rng.uniform(0, 2 * math.pi, len(r))
+    dist = (R - r) * np.sqrt(rng.uniform(0, 1, len(r)))
+    return np.stack([CX + dist * np.cos(angle), CY + dist * np.sin(angle)], axis=1)
+
+
 def _hex_inside(spacing: float, clearance: float) -> np.ndarray:
     """Hexagonal lattice points ``(k, 2)``, row by row, ``clearance`` px or more inside."""
     rows = []

@@ -2,8 +2,9 @@
 
 Discs of the benchmark's radii (``discs.radii``: 60% of the container) start on
 the engine's own start (``discs.lattice_start``: packed at the force point,
-overlapping where sizes differ), inside a static ring of segments, and fall
-towards the point force at the container's bottom until they settle.
+overlapping where sizes differ) or poured in (``discs.random_start``), inside a
+static ring of segments, and fall towards the point force at the container's
+bottom until they settle.
 
 The pull is a constant acceleration ``GRAVITY`` towards the point (the engine's
 point potential is the distance), applied every step to all bodies at once

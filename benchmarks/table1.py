@@ -17,6 +17,9 @@ script with ``--one``, printing one JSON line), the way a user meets it:
   centre height (the container's centre is at 415, its bottom at 815);
 - ``pymunk``: the same discs settled by the physics engine in its own fresh
   process (``peers.py``: cold, then warm), its overlap, and ours / pymunk.
+  ``--pymunk lattice`` (default) starts it on the engine's own start
+  (``discs.lattice_start``), ``--pymunk random`` pours the discs in uniformly
+  (``discs.random_start``), ``--pymunk off`` leaves it out.
 
 With ``--closed`` (closed boundary, no force: the scale grows until the
 container is full) ``density`` replaces ``mean_y`` and pymunk is left out:
@@ -26,7 +29,7 @@ process finds, which the header line names):
 
     PYTHONPATH=$PWD python benchmarks/table1.py            # all sizes, equal, 10x, heavy
     PYTHONPATH=$PWD python benchmarks/table1.py 200 1000   # some sizes
-    PYTHONPATH=$PWD python benchmarks/table1.py --sizes 10x,heavy --no-pymunk
+    PYTHONPATH=$PWD python benchmarks/table1.py --sizes 10x,heavy --pymunk random
     PYTHONPATH=$PWD python benchmarks/table1.py --closed --equal-only
 """
 from __future__ import annotations
@@ -86,7 +89,7 @@ def _layout(uw, df: pd.DataFrame, closed: bool, seed: int):
     return time.perf_counter() - t0, chart
 
 
-def pymunk(n: int, sizes: str, seed: int = 0) -> dict:
+def pymunk(n: int, sizes: str, start: str, seed: int = 0) -> dict:
     """Settle the same discs with pymunk twice (cold, warm), from sizes to centres; meant
     for a fresh process."""
     import peers
@@ -94,7 +97,8 @@ def pymunk(n: int, sizes: str, seed: int = 0) -> dict:
     for _ in range(2):
         t0 = time.perf_counter()
         r = discs.radii(discs.values(n, sizes, seed))
-        out = peers.settle(r, discs.lattice_start(r))
+        out = peers.settle(r, discs.lattice_start(r) if start == "lattice"
+                           else discs.random_start(r, seed))
         runs.append((time.perf_counter() - t0, out))
     quality = discs.circle_metrics(runs[0][1]["center"], r)
     return {"pymunk_cold_s": runs[0][0], "pymunk_warm_s": runs[1][0],
@@ -102,10 +106,11 @@ def pymunk(n: int, sizes: str, seed: int = 0) -> dict:
             "pymunk_outside_%": quality["outside_%"], "pymunk_mean_y": quality["mean_y"]}
 
 
-def fresh(kind: str, n: int, sizes: str, closed: bool) -> dict:
+def fresh(kind: str, n: int, sizes: str, closed: bool, start: str = "lattice") -> dict:
     """Run ``engine`` or ``pymunk`` in a fresh Python process; its JSON result. The child
     imports the ``unitopia_widget`` this process would (``_engine_path``)."""
-    cmd = [sys.executable, os.path.abspath(__file__), str(n), "--one", kind, "--sizes", sizes]
+    cmd = [sys.executable, os.path.abspath(__file__), str(n), "--one", kind, "--sizes", sizes,
+           "--pymunk", start]
     path = [os.path.dirname(_engine_path()), os.environ.get("PYTHONPATH")]
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in path if p)}
     done = subprocess.run(cmd + (["--closed"] if closed else []), capture_output=True, text=True,
@@ -115,11 +120,12 @@ def fresh(kind: str, n: int, sizes: str, closed: bool) -> dict:
     return json.loads(done.stdout.splitlines()[-1])
 
 
-def row(n: int, sizes: str, closed: bool, peer: bool) -> dict:
-    """One table row: the engine, then (open layouts) pymunk, each in its own process."""
+def row(n: int, sizes: str, closed: bool, peer: str) -> dict:
+    """One table row: the engine, then (open layouts, ``peer`` a start, not ``"off"``)
+    pymunk, each in its own process."""
     out = {"N": n, "sizes": discs.SIZES[sizes], **fresh("engine", n, sizes, closed)}
-    if peer and not closed:
-        out.update(fresh("pymunk", n, sizes, closed))
+    if peer != "off" and not closed:
+        out.update(fresh("pymunk", n, sizes, closed, peer))
         out["ratio_cold"] = out["cold_s"] / out["pymunk_cold_s"]
         out["ratio_warm"] = out["warm_s"] / out["pymunk_warm_s"]
     return out
@@ -155,22 +161,23 @@ def main(argv=None) -> None:
     which.add_argument("--sizes", type=size_list, default=list(discs.SIZES),
                        help=f"comma-separated, of {', '.join(discs.SIZES)} (default: all)")
     which.add_argument("--equal-only", action="store_true", help="the same as --sizes equal")
-    ap.add_argument("--no-pymunk", action="store_true", help="leave the pymunk columns out")
+    ap.add_argument("--pymunk", choices=["lattice", "random", "off"], default="lattice",
+                    help="pymunk's start: the engine's lattice (default), random, or no pymunk")
     ap.add_argument("--one", choices=["engine", "pymunk"], help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     kinds = ["equal"] if args.equal_only else args.sizes
     if args.one:   # a child: one layout (or pymunk run), one JSON line
         n, kind = args.sizes_n[0], kinds[0]
-        out = engine(n, kind, args.closed) if args.one == "engine" else pymunk(n, kind)
+        out = engine(n, kind, args.closed) if args.one == "engine" else pymunk(n, kind, args.pymunk)
         print(json.dumps(out))
         return
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, python "
           f"{platform.python_version()}, OMP_WAIT_POLICY={os.environ.get('OMP_WAIT_POLICY')}, "
-          f"engine from {_engine_path()}", flush=True)
+          f"engine from {_engine_path()}, pymunk start: {args.pymunk}", flush=True)
     rows = []
     for kind in kinds:
         for n in args.sizes_n:
-            rows.append(row(n, kind, args.closed, not args.no_pymunk))
+            rows.append(row(n, kind, args.closed, args.pymunk))
             print(json.dumps({k: round(v, 4) if isinstance(v, float) else v
                               for k, v in rows[-1].items()}), flush=True)
     print()

@@ -26,7 +26,8 @@ def grid_lens(d, a, b, k=2001):
 
 
 def test_lens_area_of_two_unit_discs_one_radius_apart_is_the_textbook_value():
-    assert discs.lens_area(1.0, 1.0, 1.0)[()] == pytest.approx(2 * math.acos(0.5) - math.sqrt(3) / 2)
+    textbook = 2 * math.acos(0.5) - math.sqrt(3) / 2
+    assert discs.lens_area(1.0, 1.0, 1.0)[()] == pytest.approx(textbook)
 
 
 def test_lens_area_is_zero_apart_and_the_small_disc_inside():
@@ -94,8 +95,24 @@ def test_pymunk_settles_thirty_discs_inside_the_container_towards_the_force():
     assert m["mean_y"] > discs.circle_metrics(start, r)["mean_y"]
 
 
+def test_random_start_pours_the_discs_over_the_whole_container():
+    r = discs.radii(discs.values(500, "10x"))
+    m = discs.circle_metrics(discs.random_start(r), r)
+    assert m["outside_%"] == 0 and m["overlap_%"] > 10
+    assert m["mean_y"] == pytest.approx(discs.CY, abs=20)
+
+
+def test_pymunk_from_a_random_start_falls_to_the_force():
+    r = discs.radii(discs.values(30, "equal"))
+    start = discs.random_start(r)
+    out = peers.settle(r, start)
+    m = discs.circle_metrics(out["center"], r)
+    assert m["mean_y"] > discs.circle_metrics(start, r)["mean_y"] + 0.1 * discs.R
+    assert m["overlap_%"] < 1.0
+
+
 def test_a_row_runs_engine_and_pymunk_in_fresh_processes_and_reports_the_ratio():
-    row = table1.row(20, "equal", closed=False, peer=True)
+    row = table1.row(20, "equal", closed=False, peer="lattice")
     assert row["sizes"] == "equal" and row["iterations"] > 0
     assert row["overlap_%"] < 1.0 and row["pymunk_overlap_%"] < 1.0
     assert row["ratio_cold"] == pytest.approx(row["cold_s"] / row["pymunk_cold_s"])
