@@ -62,8 +62,8 @@ def lattice_start(r: np.ndarray) -> np.ndarray:
 def random_start(r: np.ndarray, seed: int = 0) -> np.ndarray:
     """``(n, 2)`` centres uniform over the container, each disc inside it, overlapping
     freely: the discs poured in, the way a physics engine is usually started."""
-    rng = np.random.default_rng([seed, 1])   # a stream apart from values(seed)'s: sizes
-    # and places independent (the same stream set big discs at big angles)
+    # a stream apart from values(seed)'s, or a disc's angle would follow its size
+    rng = np.random.default_rng([seed, 1])
     angle = rng.uniform(0, 2 * math.pi, len(r))
     dist = (R - r) * np.sqrt(rng.uniform(0, 1, len(r)))
     return np.stack([CX + dist * np.cos(angle), CY + dist * np.sin(angle)], axis=1)
