@@ -11,6 +11,7 @@ returns the placements table.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -233,10 +234,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
-    pyramids = []   # one per distinct mark: a layer's units may draw different marks
-    for mark in units.sprites:
-        alpha = mark.silhouette(SPRITE_SIDE)
-        pyramids.append(sprite_pyramid(alpha, dev, keep_thin=is_thin(alpha)))
+    # one per distinct mark: a layer's units may draw different marks
+    pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
     cap = max_iterations or max(layer.iterations for layer in layers)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}
@@ -255,6 +254,14 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    reach=_reach(units),
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers))
+
+
+@functools.lru_cache(maxsize=64)
+def _pyramid(mark, device: str) -> list:
+    """The sprite pyramid of ``mark`` on ``device``, made once per process (marks are
+    immutable and the solver only reads it): a second layout skips the render."""
+    alpha = mark.silhouette(SPRITE_SIDE)
+    return sprite_pyramid(alpha, device, keep_thin=is_thin(alpha))
 
 
 def _reach(units: Units) -> np.ndarray:
