@@ -52,6 +52,13 @@ class CanvasTerms:
         return self._inside_total
 
     @property
+    def inside_host(self):
+        """The fill target ``(L, S)`` as a host numpy array (copied from the device once)."""
+        if not hasattr(self, "_inside_host"):
+            self._inside_host = self.inside.cpu().numpy()
+        return self._inside_host
+
+    @property
     def has_obstacles(self) -> bool:
         """Whether some layer blocks on another (read once: the blocks are fixed)."""
         if not hasattr(self, "_has_obstacles"):

@@ -279,7 +279,7 @@ class _Scales:
         size = p.terms.penalty.shape[1]
         cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
         cover = cover.cpu().numpy().reshape(p.grid.shape)
-        inside = p.terms.inside.cpu().numpy()
+        inside = p.terms.inside_host
         scale = self.unit_scale()
         for g in np.nonzero(self.free)[0]:
             for layer in np.nonzero(self.group == g)[0]:
@@ -300,7 +300,7 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
     overlap = unit_overlap(values, index, owner, len(p.layer), size)
     cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
     cover = cover.cpu().numpy().reshape(p.grid.shape)
-    inside = p.terms.inside.cpu().numpy()
+    inside = p.terms.inside_host
     scale = ctl.unit_scale()
     reach = p.reach * scale * p.grid.rho
     # the disc a mark's footprint needs at any angle: its long half side, with margin

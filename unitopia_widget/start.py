@@ -157,10 +157,11 @@ def orientation_targets(units, layers, canvas, device):
     along = torch.tensor([layers[i].orientation == "along_emitter" for i in range(len(layers))],
                          device=dev)[layer_t]
     mask = (to_center | along).to(torch.float32)
+    any_along = any(layers[i].orientation == "along_emitter" for i in wanted)   # read once, on the host
 
     def targets(center: torch.Tensor, tangent: torch.Tensor):
         target = centers[layer_t] - center
-        if bool(along.any()):
+        if any_along:
             tan = tangent.clone()
             missing = along & (tangent.norm(dim=1) < 0.5)
             for i in wanted:
