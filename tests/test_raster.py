@@ -129,7 +129,7 @@ def test_render_samples_shapes(n, rho):
         [sprite_pyramid(disc_alpha(), "cpu")], grid)
     expected = sum(len(g[0]) * g[3] * g[4] for g in groups)
     assert values.shape == index.shape == owner.shape == (expected,)
-    assert values.dtype == torch.float32 and index.dtype == owner.dtype == torch.long
+    assert values.dtype == torch.float32 and index.dtype == torch.int32 and owner.dtype == torch.long
     assert int(index.min()) >= 0 and int(index.max()) < grid.size
     assert sorted(set(owner.tolist())) == list(range(n))
     assert float(values.min()) >= 0 and float(values.max()) <= 1 + 1e-6

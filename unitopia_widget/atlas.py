@@ -72,4 +72,4 @@ class SpriteAtlas:
         m = table[sprites.to(texture.device)][:, None, None, :]          # (n, 1, 1, 8)
         x = torch.clamp(gx * m[..., 0] + m[..., 1], m[..., 2], m[..., 3])
         y = torch.clamp(gy * m[..., 4] + m[..., 5], m[..., 6], m[..., 7])
-        return texture, torch.stack([x, y], dim=-1)
+        return texture, torch.stack([x, y]).permute(1, 2, 3, 0)   # strided: see render_samples

@@ -61,7 +61,9 @@ class Curve:
 
     def torch_at(self, arc: torch.Tensor):
         """Differentiable points and unit tangents ``(n, 2)`` at arc lengths ``(n,)``."""
-        poly, table = self._poly_t.to(arc.device), self._arc_t.to(arc.device)
+        if self._poly_t.device != arc.device:   # moved once: no copy per iteration
+            self._poly_t, self._arc_t = self._poly_t.to(arc.device), self._arc_t.to(arc.device)
+        poly, table = self._poly_t, self._arc_t
         s = arc.clamp(0, self.length)
         i = torch.searchsorted(table, s.detach()).clamp(1, len(table) - 1)
         a0, a1 = table[i - 1], table[i]

@@ -11,6 +11,7 @@ returns the placements table.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -23,10 +24,10 @@ from .encodings import Encoded, check_column, encode, palette_for, unhashable
 from .groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
-from .raster import SPRITE_SIDE, RasterGrid, is_thin, sprite_pyramid
+from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from .scene import block_order
 from .solver import Problem, Result, solve
-from .start import orientation_targets, start_positions
+from .start import any_angle, orientation_targets, start_positions
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
@@ -205,6 +206,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
+    half = np.stack([units.half_w, units.half_h]) * (1 + 2 * units.margin) * unit_scale
+    rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
@@ -231,10 +234,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
-    pyramids = []   # one per distinct mark: a layer's units may draw different marks
-    for mark in units.sprites:
-        alpha = mark.silhouette(SPRITE_SIDE)
-        pyramids.append(sprite_pyramid(alpha, dev, keep_thin=is_thin(alpha)))
+    # one per distinct mark: a layer's units may draw different marks
+    pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
     cap = max_iterations or max(layer.iterations for layer in layers)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}
@@ -253,6 +254,14 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    reach=_reach(units),
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers))
+
+
+@functools.lru_cache(maxsize=64)
+def _pyramid(mark, device: str) -> list:
+    """The sprite pyramid of ``mark`` on ``device``, made once per process (marks are
+    immutable and the solver only reads it): a second layout skips the render."""
+    alpha = mark.silhouette(SPRITE_SIDE)
+    return sprite_pyramid(alpha, device, keep_thin=is_thin(alpha))
 
 
 def _reach(units: Units) -> np.ndarray:

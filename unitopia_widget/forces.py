@@ -77,10 +77,10 @@ def potential(forces, center: torch.Tensor) -> torch.Tensor:
     total = torch.zeros(center.shape[0], dtype=center.dtype, device=center.device)
     points = [f for f in forces if isinstance(f, PointForce)]
     if points:
-        where = torch.tensor([[f.x, f.y] for f in points], dtype=center.dtype, device=center.device)
-        strength = torch.tensor([f.strength for f in points], dtype=center.dtype, device=center.device)
-        dist = torch.sqrt(((center[:, None, :] - where[None]) ** 2).sum(-1) + 1e-6)  # (N, K)
-        total = total + (dist * strength).min(dim=1).values
+        # python scalars, not tensors: nothing is copied to the device each iteration
+        dist = torch.stack([f.strength * torch.sqrt((center[:, 0] - f.x) ** 2 + (center[:, 1] - f.y) ** 2
+                                                    + 1e-6) for f in points], dim=1)   # (N, K)
+        total = total + dist.min(dim=1).values
     for f in forces:
         if isinstance(f, DirectionalForce):
             vx, vy = f.vector

@@ -12,12 +12,16 @@ block each other see each other both ways, so they collide as one layer. With ``
 
 All terms are divided by ``terms.norm`` (the marks' footprint area, held
 constant during a phase) so the loss reads as a fraction of the marks' area.
-The backward only gathers the per-pixel gradient at the sample indices,
-which is far cheaper than autograd through the ``(L, H, W)`` canvas.
+The samples are scattered into the slabs once; every term and the per-pixel
+gradient are then dense, contiguous passes over the ``(L, S)`` slabs (the
+raster is capped in size), and the backward gathers the pixel gradient at the
+sample indices: one scatter and one gather of ``M`` samples per iteration,
+with no autograd through the canvas. Nothing is read back to the host: the
+per-layer sums stay on the device (``terms.sums``) for the solver to fetch.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import torch
 
@@ -34,10 +38,11 @@ class CanvasTerms:
     w_overlap: float = 1.0
     w_contain: float = 1.0
     w_fill: float = 0.0
-    stats: dict = field(default_factory=dict)  # filled by each forward: overlap, outside, fill
-    #: filled by each forward: per-layer sums ``(3, L)`` (overlap, outside, drawn alpha), numpy
-    layer_sums: object = None
+    #: set by each forward: per-layer sums ``(4, L)`` on the device (overlap, outside,
+    #: drawn alpha, covered container), in raster px^2
+    sums: torch.Tensor | None = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
+    _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
 
     @property
     def inside_total(self) -> float:
@@ -46,67 +51,104 @@ class CanvasTerms:
             self._inside_total = float(self.inside.sum())
         return self._inside_total
 
+    @property
+    def inside_host(self):
+        """The fill target ``(L, S)`` as a host numpy array (copied from the device once)."""
+        if not hasattr(self, "_inside_host"):
+            self._inside_host = self.inside.cpu().numpy()
+        return self._inside_host
+
+    @property
+    def has_obstacles(self) -> bool:
+        """Whether some layer blocks on another (read once: the blocks are fixed)."""
+        if not hasattr(self, "_has_obstacles"):
+            self._has_obstacles = bool(self.blocks.any())
+        return self._has_obstacles
+
+    @property
+    def stats(self) -> dict:
+        """Shares of the last forward (reads the sums back): overlap and outside of the
+        drawn alpha, fill of the container (NaN without a closed container); 0 before one."""
+        if self.sums is None:   # no forward yet
+            return shares([0.0, 0.0, 0.0, 0.0], self.inside_total)
+        return shares(self.sums.sum(1).tolist(), self.inside_total)
+
     def buffer(self, like: torch.Tensor) -> torch.Tensor:
         """The zeroed ``(L * S,)`` coverage buffer (allocated once)."""
         if self._cover is None or self._cover.dtype != like.dtype or self._cover.device != like.device:
             self._cover = torch.zeros(self.penalty.numel(), dtype=like.dtype, device=like.device)
+            self._tables = None
         return self._cover
+
+    def tables(self) -> tuple:
+        """Fixed per-pixel tables (made once, in the buffer's dtype and device):
+        ``fields (L, 4, S)`` penalty, outside, inside, 1 (one pass sums all four against
+        the coverage), and the pixel gradient of the loss ``(L, S)`` where the total is
+        over 1, at most 1, under 1 (``under`` is None without fill)."""
+        if self._tables is None:
+            like = self._cover
+            penalty, outside, inside = (t.to(like) for t in (self.penalty, self.outside, self.inside))
+            fields = torch.stack([penalty, outside, inside, torch.ones_like(penalty)], dim=1)
+            mid = self.w_contain * penalty / self.norm
+            over = mid + self.w_overlap / self.norm
+            under = mid - self.w_fill * inside / self.norm if self.w_fill else None
+            self._tables = (fields, over, mid, under)
+        return self._tables
+
+
+def shares(sums, inside_total: float) -> dict:
+    """``{"overlap", "outside", "fill"}`` from summed ``(overlap, outside, drawn, covered)``."""
+    overlap, outside, drawn, covered = sums
+    drawn = max(drawn, 1e-6)
+    return {"overlap": overlap / drawn, "outside": outside / drawn,
+            "fill": covered / inside_total if inside_total > 0 else float("nan")}
 
 
 class CanvasLoss(torch.autograd.Function):
     """``loss = CanvasLoss.apply(values, index, layer, terms)`` -> scalar.
 
     ``values (M,)`` sample alphas, ``index (M,)`` flat raster index within a
-    slab, ``layer (M,)`` the layer of each sample (long).
+    slab, ``layer (M,)`` the layer of each sample (long), or None when there
+    is one layer.
 
-    Only the pixels the samples touch are visited: the cost is O(M), not
-    O(L x H x W). Values are attributed to samples by their share ``C / T`` of a
-    pixel's occupancy, which makes the overlap value exactly
-    ``sum_p relu(T_p - 1)`` over the layer's pixels when it has no obstacles
-    (with obstacles, the layer's share of it). The backward is the pixel
-    gradient of the module docstring's terms, gathered at the samples.
+    A layer's values are attributed by its share ``C / T`` of a pixel's
+    occupancy, which makes the overlap value exactly ``sum_p relu(T_p - 1)``
+    over the layer's pixels when it has no obstacles (with obstacles, the
+    layer's share of it). The backward is the pixel gradient of the module
+    docstring's terms, gathered at the samples.
     """
 
     @staticmethod
     def forward(ctx, values, index, layer, terms: CanvasTerms):
         n_layers, size = terms.penalty.shape
-        flat = layer * size + index
+        flat = index if layer is None or n_layers == 1 else layer * size + index
         cover = terms.buffer(values)
         cover.index_add_(0, flat, values)
-        own = cover[flat]                                          # (M,) C at each sample's pixel
-        total = own
-        if n_layers > 1 and bool(terms.blocks.any()):
-            stacked = cover.view(n_layers, size)[:, index]          # (L, M) every slab at the pixel
-            total = own + (terms.blocks[layer] * stacked.T).sum(1)  # + obstacles O
-        cover.index_fill_(0, flat, 0.0)                            # leave the buffer zeroed
-        share = values / total.clamp_min(1e-6)
-        outside_at = terms.outside.view(-1)[flat]
-        penalty_at = terms.penalty.view(-1)[flat]
-        inside_at = terms.inside.view(-1)[flat]
-        overlap = (share * torch.relu(total - 1.0)).sum()
-        covered = (share * inside_at * torch.clamp(total, max=1.0)).sum()
-        contain = (values * penalty_at).sum()
-        gap = terms.inside_total - covered
-        area = terms.norm
-        loss = (terms.w_overlap * overlap + terms.w_contain * contain + terms.w_fill * gap) / area
-        sample_grad = (terms.w_overlap * (total > 1.0).to(values.dtype) + terms.w_contain * penalty_at)
-        if terms.w_fill:
-            sample_grad -= terms.w_fill * inside_at * (total < 1.0).to(values.dtype)
-        ctx.save_for_backward(sample_grad / area)
-        drawn = values.sum().clamp_min(1e-6)
-        outside = (values * outside_at).sum()
-        if n_layers == 1:
-            sums = torch.stack([overlap, outside, values.sum()])[:, None]
+        own = cover.view(n_layers, size)
+        fields, over, mid, under = terms.tables()
+        # contain, outside, inside . C and drawn alpha per layer: one pass over the slabs
+        per = torch.bmm(fields, own[:, :, None])[..., 0]                       # (L, 4)
+        if n_layers > 1 and terms.has_obstacles:
+            total = own + terms.blocks.to(own) @ own                            # T = C + O
+            share = own / total.clamp_min(1e-6)
+            excess = share * torch.relu(total - 1.0)                            # the layer's share
+            overlap = excess.sum(1)
+            covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1)
         else:
-            sums = torch.zeros((3, n_layers), dtype=values.dtype, device=values.device)
-            for row, v in enumerate((share * torch.relu(total - 1.0), values * outside_at, values)):
-                sums[row].index_add_(0, layer, v)
-        terms.layer_sums = sums.detach().cpu().numpy()
-        terms.stats = {
-            "overlap": float(overlap / drawn),
-            "outside": float(outside / drawn),
-            "fill": float(covered / terms.inside_total) if terms.inside_total > 0 else float("nan"),
-        }
+            total = own
+            excess = (own - 1.0).clamp_min_(0.0)
+            # overlap and inside . excess: the container covered is inside . min(C, 1)
+            spilled = torch.bmm(fields[:, 2:], excess[:, :, None])[..., 0]      # (L, 2)
+            overlap, covered = spilled[:, 1], per[:, 2] - spilled[:, 0]
+        terms.sums = torch.stack([overlap, per[:, 1], per[:, 3], covered]).detach()
+        gap = terms.inside_total - covered.sum()
+        loss = (terms.w_overlap * overlap.sum() + terms.w_contain * per[:, 0].sum()
+                + terms.w_fill * gap) / terms.norm
+        # the pixel gradient, already divided by the norm; gathered at the samples
+        pixel_grad = torch.where(total > 1.0, over, mid if under is None else
+                                 torch.where(total < 1.0, under, mid))
+        ctx.save_for_backward(pixel_grad.reshape(-1).index_select(0, flat))
+        cover.zero_()                                                           # leave the buffer zeroed
         return loss
 
     @staticmethod

@@ -358,20 +358,23 @@ class Mark:
         render with every opacity at 1, raster alpha counts double (so a
         half-transparent pixel is occupied), and edges stay anti-aliased.
 
-        The render is cached per ``max_side``; each call returns a fresh copy.
+        The render is cached per ``max_side`` (for every equal mark in the
+        process: a new chart with the same marks renders nothing); each call
+        returns a fresh copy.
         """
         max_side = int(max_side)
         if not 1 <= max_side <= 8192:
             raise ValueError(f"max_side must be in [1, 8192], got {max_side}")
         if max_side not in self._cache:
-            size = _pixel_size(self.aspect, max_side)
-            if self._image is not None:
-                alpha = np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
-            else:
-                rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
-                alpha = rgba[..., 3].astype(np.float32) / 255.0
-            self._cache[max_side] = alpha
+            self._cache[max_side] = _silhouette(self, max_side)
         return self._cache[max_side].copy()
+
+    def _render(self, max_side: int) -> np.ndarray:
+        size = _pixel_size(self.aspect, max_side)
+        if self._image is not None:
+            return np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
+        rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
+        return rgba[..., 3].astype(np.float32) / 255.0
 
     # --- output -------------------------------------------------------------
     def svg_fragment(self, def_id: str, color: str | None = None) -> str:
@@ -419,6 +422,12 @@ class Mark:
     def __repr__(self):
         name = f" {self._json['name']!r}" if self.kind in ("shape", "icon") else ""
         return f"<Mark {self.kind}{name} aspect={self.aspect:.3g}>"
+
+
+@functools.lru_cache(maxsize=128)
+def _silhouette(mark: Mark, max_side: int) -> np.ndarray:
+    """``Mark.silhouette``'s render, shared by equal marks (marks are immutable)."""
+    return mark._render(max_side)
 
 
 @functools.lru_cache(maxsize=256)

@@ -47,6 +47,7 @@ class Placement:
         self.orientation = orientation
         self.orientation_weight = orientation_weight
         self._fixed_angle = bool(np.any(np.abs(angle) > 1e-6))
+        self._canvas = None   # (canvas, its size as a tensor) for ``project``
 
     def hold(self, held: np.ndarray) -> None:
         """Freeze the translation of the units where ``held (N,)`` is True; release the rest."""
@@ -98,7 +99,9 @@ class Placement:
         """
         if self.drift is not None:
             self.t += self.drift * (DRIFT_DECAY ** iteration) * self.keep
-        size = torch.tensor(canvas, dtype=self.t.dtype, device=self.t.device)
+        if self._canvas is None or self._canvas[0] != canvas:   # made once, not per iteration
+            self._canvas = (canvas, torch.tensor(canvas, dtype=self.t.dtype, device=self.t.device))
+        size = self._canvas[1]
         if half is None:
             half = torch.zeros_like(self.t)
         low = torch.minimum(half, size / 2)

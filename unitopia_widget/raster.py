@@ -108,17 +108,32 @@ def _patch_side(extent: np.ndarray) -> np.ndarray:
     return sides[pos]
 
 
-def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
-                sprite_sides: list[int], rotating: np.ndarray, rho: float):
-    """Group marks by (sprite, level, patch shape).
+def snap_rho(rho: float, half_w: np.ndarray, half_h: np.ndarray, rotating: bool,
+             floor: float = 0.9) -> float:
+    """A raster resolution in ``[floor * rho, rho]`` whose patches waste the fewest samples.
 
-    ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
-    ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
-    ``sprite_sides``: long side of each sprite's finest level, texels.
-    ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
-    any rotation, others a box patch.
-    Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
+    ``half_w``, ``half_h``: ``(N,)`` half footprints, canvas px. Patch sides come
+    in steps (``PATCH_SIDES``): a mark just over a step pays the next one, 1.5x
+    the samples for equal circles; a slightly coarser raster lets it fit. Returns
+    the finest resolution within 2% of the fewest samples.
     """
+    half_w, half_h = np.asarray(half_w, float), np.asarray(half_h, float)
+    reach = np.hypot(half_w, half_h)
+    candidates = np.linspace(floor * rho, rho, 41)
+    cost = []
+    for r in candidates:
+        ext_w = (2 * reach if rotating else 2 * half_w) * r + 2.0
+        ext_h = (2 * reach if rotating else 2 * half_h) * r + 2.0
+        if max(ext_w.max(), ext_h.max()) > PATCH_SIDES[-1]:
+            return rho   # too large to plan here; plan_groups says why
+        cost.append(float(np.sum(_patch_side(ext_w) * _patch_side(ext_h))))
+    cost = np.asarray(cost)
+    return float(candidates[cost <= 1.02 * cost.min()].max())
+
+
+def group_keys(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
+               sprite_sides: list[int], rotating: np.ndarray, rho: float) -> np.ndarray:
+    """``(N, 4)`` int: each mark's (sprite, level, patch_h, patch_w); see ``plan_groups``."""
     long_px = 2.0 * np.maximum(half_w, half_h) * rho
     radius = np.hypot(half_w, half_h) * rho
     ext_w = np.where(rotating, 2 * radius, 2 * half_w * rho) + 2.0
@@ -128,13 +143,87 @@ def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
     # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
     level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
     level = np.minimum(level, int(np.log2(max(sprite_sides) / 4)))   # the coarsest level is 4 texels
-    key = np.stack([sprite_ids, level, ph, pw], axis=1)
-    uniq, inverse = np.unique(key, axis=0, return_inverse=True)
-    inverse = inverse.reshape(-1)
+    return np.stack([sprite_ids, level, ph, pw], axis=1)
+
+
+def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
+                sprite_sides: list[int], rotating: np.ndarray, rho: float, keys=None):
+    """Group marks by (sprite, level, patch shape).
+
+    ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
+    ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
+    ``sprite_sides``: long side of each sprite's finest level, texels.
+    ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
+    any rotation, others a box patch. ``keys``: ``group_keys`` already computed.
+    Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
+    """
+    key = group_keys(half_w, half_h, sprite_ids, sprite_sides, rotating, rho) if keys is None else keys
+    # one integer per key (each column is small and non-negative): a 1-D unique is cheap
+    code = ((key[:, 0].astype(np.int64) * 64 + key[:, 1]) * 2048 + key[:, 2]) * 2048 + key[:, 3]
+    uniq, first, inverse = np.unique(code, return_index=True, return_inverse=True)
     order = np.argsort(inverse, kind="stable")
     bounds = np.searchsorted(inverse[order], np.arange(len(uniq) + 1))
-    return [(order[bounds[g]:bounds[g + 1]], int(u[0]), int(u[1]), int(u[2]), int(u[3]))
-            for g, u in enumerate(uniq)]
+    return [(order[bounds[g]:bounds[g + 1]], *(int(v) for v in key[first[g]]))
+            for g in range(len(uniq))]
+
+
+class RenderPlan:
+    """The groups of ``plan_groups`` prepared on the device for ``render_samples``.
+
+    ``parts``: one per ``grid_sample`` call, ``(indices (n,) long, sprite id or
+    (n,) sprite tensor for an atlas, level, ph, pw)``; ``owner (M,)``: the mark
+    of each sample, in render order. A plan stays valid while no mark changes
+    group (``Planner``), so nothing here is rebuilt every iteration.
+    """
+
+    def __init__(self, groups, pyramids, device, grid: RasterGrid):
+        from .atlas import SpriteAtlas
+
+        self.atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
+        height, width = grid.shape
+        self.parts = []
+        for idx, sprite, level, ph, pw in (self.atlas.merge(groups) if self.atlas else groups):
+            if self.atlas is not None:
+                sprite = sprite.to(device)
+            self.parts.append(_Part(torch.as_tensor(idx, device=device), sprite, level, ph, pw,
+                                    device, width, height))
+        self.owner = torch.cat([part.idx.repeat_interleave(ph * pw) for part in self.parts
+                                for ph, pw in [(part.ph, part.pw)]])
+
+
+class _Part:
+    """One ``grid_sample`` call: its marks ``idx (n,)``, sprite, level and patch ``(ph, pw)``,
+    with the patch's fixed tensors: pixel centres ``u (pw,)``, ``v (ph,)`` (raster px from
+    the patch origin), ``offsets (ph * pw,)`` int32 flat raster offsets, ``size`` and the
+    largest origin ``limit`` (x, y)."""
+
+    def __init__(self, idx, sprite, level, ph, pw, device, width, height):
+        self.idx, self.sprite, self.level, self.ph, self.pw = idx, sprite, level, ph, pw
+        self.u = torch.arange(pw, device=device, dtype=torch.float32) + 0.5
+        self.v = torch.arange(ph, device=device, dtype=torch.float32) + 0.5
+        rows, cols = torch.arange(ph, device=device), torch.arange(pw, device=device)
+        self.offsets = (rows[:, None] * width + cols[None, :]).reshape(-1).to(torch.int32)
+        self.size = torch.tensor([pw, ph], device=device, dtype=torch.float32)
+        self.limit = torch.tensor([width, height], device=device, dtype=torch.float32) - self.size
+        self.overhangs = ph > height or pw > width
+
+
+class Planner:
+    """Builds a ``RenderPlan`` when the marks' groups change, and reuses it otherwise."""
+
+    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, grid: RasterGrid, device):
+        self.args = (sprite_ids, sprite_sides, rotating)
+        self.pyramids, self.grid, self.device = pyramids, grid, device
+        self.keys, self.current = None, None
+
+    def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
+        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
+        sprite_ids, sides, rotating = self.args
+        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho)
+        if self.keys is None or not np.array_equal(keys, self.keys):
+            groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, keys)
+            self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device, self.grid)
+        return self.current
 
 
 def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tensor,
@@ -143,54 +232,56 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
 
     ``center``: ``(N, 2)`` canvas px; ``angle``: ``(N,)`` radians;
     ``half_w``, ``half_h``: ``(N,)`` canvas px. All may carry gradients.
+    ``groups``: a ``RenderPlan`` or the list ``plan_groups`` returns.
     ``pyramids`` is a list of sprite pyramids or a ``SpriteAtlas`` of them (then
     groups that differ only in their sprite render in one call).
     Returns ``values (M,)`` (alpha, differentiable), ``index (M,)`` (flat
-    raster index, long) and ``owner (M,)`` (the mark of each sample, long).
+    raster index, int32) and ``owner (M,)`` (the mark of each sample, long).
     """
-    from .atlas import SpriteAtlas
-
+    plan = groups if isinstance(groups, RenderPlan) else RenderPlan(groups, pyramids, center.device, grid)
     rho, pad = grid.rho, grid.pad
     height, width = grid.shape
-    values, indices, owners = [], [], []
-    atlas = pyramids if isinstance(pyramids, SpriteAtlas) else None
-    for idx_np, sprite_id, level, ph, pw in (atlas.merge(groups) if atlas else groups):
-        idx = torch.as_tensor(idx_np, device=center.device)
+    values, indices = [], []
+    cos_all, sin_all = torch.cos(angle), torch.sin(angle)
+    for part in plan.parts:
+        idx, ph, pw = part.idx, part.ph, part.pw
         c = center[idx] * rho + pad                                     # (n, 2) raster px
-        a = angle[idx]
-        cos, sin = torch.cos(a)[:, None, None], torch.sin(a)[:, None, None]
-        size = torch.tensor([pw, ph], device=c.device, dtype=c.dtype)
-        limit = torch.tensor([width, height], device=c.device, dtype=c.dtype) - size
         # patches stay on the raster; a mark beyond the border is cut off there
-        origin = torch.minimum(torch.clamp(torch.floor(c.detach() - size / 2), min=0), limit)
-        u = torch.arange(pw, device=c.device, dtype=c.dtype) + 0.5
-        v = torch.arange(ph, device=c.device, dtype=c.dtype) + 0.5
-        dx = (origin[:, None, 0] + u - c[:, 0:1])[:, None, :]              # (n, 1, pw)
-        dy = (origin[:, None, 1] + v - c[:, 1:2])[:, :, None]              # (n, ph, 1)
+        origin = torch.minimum(torch.clamp(torch.floor(c.detach() - part.size / 2), min=0), part.limit)
+        shift = origin - c
+        dx = (shift[:, 0:1] + part.u)[:, None, :]                          # (n, 1, pw)
+        dy = (shift[:, 1:2] + part.v)[:, :, None]                          # (n, ph, 1)
+        cos, sin = cos_all[idx][:, None, None], sin_all[idx][:, None, None]
         sx = (rho * half_w[idx])[:, None, None]
         sy = (rho * half_h[idx])[:, None, None]
-        gx = (cos * dx + sin * dy) / sx                                    # (n, ph, pw) sprite x in [-1, 1]
-        gy = (cos * dy - sin * dx) / sy
-        if atlas is None:
-            sprite, sample_grid = pyramids[sprite_id][level], torch.stack([gx, gy], dim=-1)
-        else:   # sprite_id: (n,) the sprite of each mark, tiles of one texture
-            sprite, sample_grid = atlas.grid(level, sprite_id, gx, gy)
+        # sprite coordinates in [-1, 1]; the (n, 1, pw) and (n, ph, 1) factors are small, so
+        # each coordinate costs one full-size operation
+        gx = dx * (cos / sx) + dy * (sin / sx)                             # (n, ph, pw)
+        gy = dy * (cos / sy) - dx * (sin / sy)
+        if plan.atlas is None:
+            # stacked in front and viewed as (n, ph, pw, 2): grid_sample reads strided grids,
+            # and interleaving the two coordinates in memory would cost more than the sampling
+            sprite, sample_grid = pyramids[part.sprite][part.level], torch.stack([gx, gy]).permute(1, 2, 3, 0)
+        else:   # part.sprite: (n,) the sprite of each mark, tiles of one texture
+            sprite, sample_grid = plan.atlas.grid(part.level, part.sprite, gx, gy)
         alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
                               padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
-        o = origin.long()
-        rows = o[:, 1, None] + torch.arange(ph, device=c.device)              # (n, ph)
-        cols = o[:, 0, None] + torch.arange(pw, device=c.device)              # (n, pw)
-        if ph > height or pw > width:
+        o = origin.to(torch.int32)
+        if part.overhangs:
             # a patch larger than the raster overhangs it: drop the samples off the raster
+            rows = o[:, 1, None] + torch.arange(ph, device=o.device, dtype=torch.int32)   # (n, ph)
+            cols = o[:, 0, None] + torch.arange(pw, device=o.device, dtype=torch.int32)   # (n, pw)
             on = ((rows >= 0) & (rows < height))[:, :, None] & ((cols >= 0) & (cols < width))[:, None, :]
             alpha = alpha * on.reshape(1, 1, -1, pw).to(alpha.dtype)
             rows, cols = rows.clamp(0, height - 1), cols.clamp(0, width - 1)
-        flat = rows[:, :, None] * width + cols[:, None, :]                    # (n, ph, pw)
+            flat = rows[:, :, None] * width + cols[:, None, :]                        # (n, ph, pw)
+        else:
+            flat = (o[:, 1] * width + o[:, 0])[:, None] + part.offsets[None, :]       # (n, ph * pw)
         values.append(alpha.reshape(-1))
         indices.append(flat.reshape(-1))
-        owners.append(idx.repeat_interleave(ph * pw))
-    return torch.cat(values), torch.cat(indices), torch.cat(owners)
-
+    if len(values) == 1:
+        return values[0], indices[0], plan.owner
+    return torch.cat(values), torch.cat(indices), plan.owner
 
 def accumulate(values: torch.Tensor, index: torch.Tensor, size: int) -> torch.Tensor:
     """Coverage image: the sum of all samples per raster pixel, ``(size,)``."""

@@ -40,8 +40,10 @@ def holes(cover: np.ndarray, inside: np.ndarray, overlap: np.ndarray, radius: np
     """
     free = (cover < 0.5) & (inside >= 0.5)
     moved, left = [], [int(u) for u in members if overlap[u] > 0]
+    # one distance transform; each stamp then lowers the distances near it only
+    # (to the stamped disc: |q - p| - r), where they can change: within r + the largest
+    dist = ndimage.distance_transform_edt(np.pad(free, 1))[1:-1, 1:-1]   # the raster's edge bounds too
     for _ in range(limit):
-        dist = ndimage.distance_transform_edt(np.pad(free, 1))[1:-1, 1:-1]   # the raster's edge bounds too
         i, j = np.unravel_index(int(np.argmax(dist)), dist.shape)
         size = float(dist[i, j])
         fits = [u for u in left if radius[u] <= size]
@@ -50,6 +52,10 @@ def holes(cover: np.ndarray, inside: np.ndarray, overlap: np.ndarray, radius: np
         unit = max(fits, key=lambda u: overlap[u])
         left.remove(unit)
         moved.append((unit, ((j - grid.pad + 0.5) / grid.rho, (i - grid.pad + 0.5) / grid.rho)))
-        yy, xx = np.ogrid[:free.shape[0], :free.shape[1]]
-        free &= (yy - i) ** 2 + (xx - j) ** 2 > max(radius[unit], 1.0) ** 2
+        r = max(radius[unit], 1.0)
+        reach = int(np.ceil(r + size)) + 1
+        rows = slice(max(i - reach, 0), min(i + reach + 1, dist.shape[0]))
+        cols = slice(max(j - reach, 0), min(j + reach + 1, dist.shape[1]))
+        yy, xx = np.ogrid[rows, cols]
+        np.minimum(dist[rows, cols], np.maximum(np.hypot(yy - i, xx - j) - r, 0.0), out=dist[rows, cols])
     return moved

@@ -30,11 +30,13 @@ import numpy as np
 import torch
 
 from .forces import potential
-from .losses import CanvasLoss, CanvasTerms
+from .losses import CanvasLoss, CanvasTerms, shares
+from .optim import Adam
 from .placement import Placement
-from .raster import RasterGrid, plan_groups, render_samples
+from .raster import Planner, RasterGrid, render_samples
 from .relocate import holes, unit_overlap
 from .room import empty_share
+from .transfer import Readback, upload
 
 
 @dataclass
@@ -113,8 +115,12 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     params = [{"params": place.parameters(), "lr": p.lr * radius}]
     if place.angle_params():
         params.append({"params": place.angle_params(), "lr": 0.05})
-    optimizer = torch.optim.Adam(params, betas=(0.8, 0.95))
+    optimizer = Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
+    planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev)
+    foot_w, foot_h = p.half_w * (1 + 2 * p.margin), p.half_h * (1 + 2 * p.margin)
+    n_layers = p.terms.penalty.shape[0]
+    readback, plan, sample_layer = Readback(dev), None, None
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
                     for a, fs in enumerate(p.forces) if fs]
     # marks stay on the canvas with all their ink (rotating ones with their box's circle)
@@ -139,13 +145,15 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         if cancel is not None and cancel():
             cancelled = True
             break
-        scale = ctl.unit_tensor(dev)
+        unit_scale = ctl.unit_scale()
+        scale = upload(unit_scale, dev)
         center, angle = place.transforms()
         hw, hh = scale * half_w0, scale * half_h0
-        groups = plan_groups(hw.detach().cpu().numpy(), hh.detach().cpu().numpy(), p.sprite,
-                             p.sprite_sides, rotating, p.grid.rho)
-        values, index, owner = render_samples(center, angle, hw, hh, groups, p.pyramids, p.grid)
-        loss = CanvasLoss.apply(values, index, layer_t[owner], p.terms)
+        if planner.plan_for(foot_w * unit_scale, foot_h * unit_scale) is not plan:
+            plan = planner.current
+            sample_layer = layer_t[plan.owner] if n_layers > 1 else None
+        values, index, owner = render_samples(center, angle, hw, hh, plan, p.pyramids, p.grid)
+        loss = CanvasLoss.apply(values, index, sample_layer, p.terms)
         if phase == "polish":   # legalising rounds: no force presses the marks together
             weight = p.force_weight * p.polish_force * (rounds == 0)
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle
@@ -158,19 +166,22 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         optimizer.step()
         place.project(p.grid.canvas, iteration, ink_t * scale[:, None])
         iteration += 1
-        loss_value = float(loss.detach())
+        # the loss and the per-layer sums, on a GPU those of the iteration before (no stall)
+        readings = readback.push(torch.cat([loss.detach().reshape(1), p.terms.sums.reshape(-1)]))
+        loss_value, sums = float(readings[0]), readings[1:].reshape(4, n_layers).astype(float)
+        stats = shares(sums.sum(1), p.terms.inside_total)
         if on_frame is not None and iteration % frame_every == 0:
             on_frame(_frame(place, ctl.unit_scale()))
         if on_progress is not None:
-            on_progress(iteration, loss_value, p.terms.stats)
-        overlap_g, outside_g = ctl.crowding(p.terms.layer_sums)
+            on_progress(iteration, loss_value, stats)
+        overlap_g, outside_g = ctl.crowding(sums[:3])
         if phase == "settle":
             # big steps while marks travel freely, small ones once they press on each other
             if loss_value < best * (1 - 1e-3) - 1e-6:
                 best, since_best = loss_value, 0
             else:
                 since_best += 1
-            overlap = p.terms.stats["overlap"]
+            overlap = stats["overlap"]
             # crowding; while marks travel, only crowding that gets worse (an emitter's
             # first pile-up resolving is no reason to slow down)
             crowded = overlap > p.overlap_target and (not travelling or overlap > last_overlap * 1.001)
@@ -253,9 +264,6 @@ class _Scales:
         """``(N,)`` each unit's current scale."""
         return np.exp(self.log)[self.unit_group]
 
-    def unit_tensor(self, dev) -> torch.Tensor:
-        return torch.as_tensor(self.unit_scale(), dtype=torch.float32, device=dev)
-
     def crowding(self, sums: np.ndarray):
         """Overlap and outside shares ``(G,)`` from the loss's per-layer sums ``(3, L)``."""
         per = np.zeros((3, self.count))
@@ -271,7 +279,7 @@ class _Scales:
         size = p.terms.penalty.shape[1]
         cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
         cover = cover.cpu().numpy().reshape(p.grid.shape)
-        inside = p.terms.inside.cpu().numpy()
+        inside = p.terms.inside_host
         scale = self.unit_scale()
         for g in np.nonzero(self.free)[0]:
             for layer in np.nonzero(self.group == g)[0]:
@@ -292,7 +300,7 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
     overlap = unit_overlap(values, index, owner, len(p.layer), size)
     cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
     cover = cover.cpu().numpy().reshape(p.grid.shape)
-    inside = p.terms.inside.cpu().numpy()
+    inside = p.terms.inside_host
     scale = ctl.unit_scale()
     reach = p.reach * scale * p.grid.rho
     # the disc a mark's footprint needs at any angle: its long half side, with margin

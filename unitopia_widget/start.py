@@ -109,7 +109,8 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
     count = len(r)
     spacing = 2 * float(np.sqrt((r ** 2).mean())) * 1.02
     if layer.boundary == "closed" and layer.fill is None:
-        spacing = min(spacing, grid_spacing(region, count + len(taken)))
+        # spread over the whole container: the scale then grows with no mark to rearrange
+        spacing = grid_spacing(region, count + len(taken))
     lattice = fitting_lattice(region, count + len(taken), spacing, min(float(r.mean()), spacing / 2))
     if len(taken):
         near = cKDTree(taken).query(lattice, k=1)[0]
@@ -156,10 +157,11 @@ def orientation_targets(units, layers, canvas, device):
     along = torch.tensor([layers[i].orientation == "along_emitter" for i in range(len(layers))],
                          device=dev)[layer_t]
     mask = (to_center | along).to(torch.float32)
+    any_along = any(layers[i].orientation == "along_emitter" for i in wanted)   # read once, on the host
 
     def targets(center: torch.Tensor, tangent: torch.Tensor):
         target = centers[layer_t] - center
-        if bool(along.any()):
+        if any_along:
             tan = tangent.clone()
             missing = along & (tangent.norm(dim=1) < 0.5)
             for i in wanted:
@@ -173,3 +175,8 @@ def orientation_targets(units, layers, canvas, device):
         return target, mask
 
     return targets
+
+
+def any_angle(layers) -> bool:
+    """Whether some layer's marks turn or stand at an angle (then every patch holds any rotation)."""
+    return any(turn or abs(angle) > 1e-6 for angle, turn in map(_angles, layers))
