@@ -83,16 +83,16 @@ class CanvasTerms:
     def tables(self) -> tuple:
         """Fixed per-pixel tables (made once, in the buffer's dtype and device):
         ``fields (L, 4, S)`` penalty, outside, inside, 1 (one pass sums all four against
-        the coverage), and the pixel gradient of the loss ``(L, S)`` where the total is
-        over 1, at most 1, under 1 (``under`` is None without fill)."""
+        the coverage), the pixel gradient where the total is at most 1 (``base (L, S)``),
+        and what an over-full pixel adds (a number) and an under-full one takes away
+        (``fill (L, S)``, None without fill); everything divided by the norm."""
         if self._tables is None:
             like = self._cover
             penalty, outside, inside = (t.to(like) for t in (self.penalty, self.outside, self.inside))
             fields = torch.stack([penalty, outside, inside, torch.ones_like(penalty)], dim=1)
-            mid = self.w_contain * penalty / self.norm
-            over = mid + self.w_overlap / self.norm
-            under = mid - self.w_fill * inside / self.norm if self.w_fill else None
-            self._tables = (fields, over, mid, under)
+            base = self.w_contain * penalty / self.norm
+            fill = self.w_fill * inside / self.norm if self.w_fill else None
+            self._tables = (fields, base, self.w_overlap / self.norm, fill)
         return self._tables
 
 
@@ -125,18 +125,19 @@ class CanvasLoss(torch.autograd.Function):
         cover = terms.buffer(values)
         cover.index_add_(0, flat, values)
         own = cover.view(n_layers, size)
-        fields, over, mid, under = terms.tables()
+        fields, base, over, fill = terms.tables()
         # contain, outside, inside . C and drawn alpha per layer: one pass over the slabs
         per = torch.bmm(fields, own[:, :, None])[..., 0]                       # (L, 4)
         if n_layers > 1 and terms.has_obstacles:
             total = own + terms.blocks.to(own) @ own                            # T = C + O
+            spill = torch.relu(total - 1.0)
             share = own / total.clamp_min(1e-6)
-            excess = share * torch.relu(total - 1.0)                            # the layer's share
+            excess = share * spill                                              # the layer's share
             overlap = excess.sum(1)
             covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1)
         else:
             total = own
-            excess = (own - 1.0).clamp_min_(0.0)
+            spill = excess = (own - 1.0).clamp_min_(0.0)
             # overlap and inside . excess: the container covered is inside . min(C, 1)
             spilled = torch.bmm(fields[:, 2:], excess[:, :, None])[..., 0]      # (L, 2)
             overlap, covered = spilled[:, 1], per[:, 2] - spilled[:, 0]
@@ -144,9 +145,11 @@ class CanvasLoss(torch.autograd.Function):
         gap = terms.inside_total - covered.sum()
         loss = (terms.w_overlap * overlap.sum() + terms.w_contain * per[:, 0].sum()
                 + terms.w_fill * gap) / terms.norm
-        # the pixel gradient, already divided by the norm; gathered at the samples
-        pixel_grad = torch.where(total > 1.0, over, mid if under is None else
-                                 torch.where(total < 1.0, under, mid))
+        # the pixel gradient, already divided by the norm, gathered at the samples; sign()
+        # of the spill (1 over full, 0 else) instead of where(): a third of the time on a CPU
+        pixel_grad = torch.add(base, torch.sign(spill), alpha=over)
+        if fill is not None:
+            pixel_grad.addcmul_(fill, torch.sign((1.0 - total).clamp_min_(0.0)), value=-1.0)
         ctx.save_for_backward(pixel_grad.reshape(-1).index_select(0, flat))
         cover.zero_()                                                           # leave the buffer zeroed
         return loss
