@@ -19,6 +19,7 @@ from .emitters import CurveEmitter, GridEmitter
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
+from .pack import STEP, Packing, spread
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -44,11 +45,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     n = len(units.layer)
     s = Start(center=np.zeros((n, 2)), angle=np.zeros(n), movable=np.ones(n, bool),
               turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
-    # the disc that holds a mark's footprint when packed: area-equivalent, widened for
-    # shapes less compact than a disc (a star needs more room than its area)
-    compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
-    radius = np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin) * scale
-    regions, taken = {}, {}
+    radius = footprint_radius(units) * scale
+    regions, taken, packings = {}, {}, {}
     for i in order:
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
@@ -60,7 +58,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
-            taken[key] = np.zeros((0, 2))
+            taken[key] = (np.zeros((0, 2)), np.zeros(0))
         region, r = regions[key], radius[idx]
         emitter = layer.emitter
         if isinstance(emitter, CurveEmitter):
@@ -76,12 +74,20 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
+        elif spread(r) or key in packings:   # sizes spread: largest first, small ones into gaps
+            if key not in packings:
+                packings[key] = Packing(region, STEP * float(np.median(r)), float(radius.max()))
+                packings[key].stamp(*taken[key])
+            cost = spot_cost(layer, container, canvas, packings[key].points)
+            s.center[idx] = packings[key].place(r, cost, ranks)[0]
         else:
             try:
-                s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
+                s.center[idx] = _settled(region, r, ranks, layer, taken[key][0], container, canvas)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
-        taken[key] = np.concatenate([taken[key], s.center[idx]])
+        if key in packings and emitter is not None:   # emitted marks take room from packed ones
+            packings[key].stamp(s.center[idx], r)
+        taken[key] = (np.concatenate([taken[key][0], s.center[idx]]), np.concatenate([taken[key][1], r]))
         speed = 1.0 if emitter is None else emitter.speed
         s.movable[idx] = speed > 0
         s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
@@ -115,16 +121,28 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
         near = cKDTree(taken).query(lattice, k=1)[0]
         free = lattice[near > 0.9 * spacing]
         lattice = free if len(free) >= count else lattice[np.argsort(-near)[:max(count, 1)]]
-    pts = torch.tensor(lattice, dtype=torch.float64)
-    if layer.forces:
-        cost = potential(layer.forces, pts).numpy()
-    else:
-        cx, cy = container.centroid(canvas)
-        cost = np.hypot(lattice[:, 0] - cx, lattice[:, 1] - cy)
+    cost = spot_cost(layer, container, canvas, lattice)
     best = lattice[np.argsort(cost, kind="stable")[:count]]
     if len(best) < count:
         raise ValueError(f"layer {layer.name!r}: its container is too small for {count} marks")
     return best[ranks]
+
+
+def spot_cost(layer, container, canvas, points: np.ndarray) -> np.ndarray:
+    """``(k,)`` how little a layer's marks want to start at ``points (k, 2)``: the
+    potential of its forces, or the distance to its container's centre."""
+    if layer.forces:
+        return potential(layer.forces, torch.tensor(points, dtype=torch.float64)).numpy()
+    cx, cy = container.centroid(canvas)
+    return np.hypot(points[:, 0] - cx, points[:, 1] - cy)
+
+
+def footprint_radius(units) -> np.ndarray:
+    """``(N,)`` at scale 1: the disc that holds a mark's footprint when packed,
+    area-equivalent and widened for shapes less compact than a disc (a star needs more
+    room than its area), margins included."""
+    compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
+    return np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin)
 
 
 def _angles(layer):

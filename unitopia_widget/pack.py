@@ -1,0 +1,90 @@
+"""Size-aware start: marks packed by decreasing size, small ones into the gaps.
+
+A wide spread of sizes jams on a lattice sized for the mean mark: large marks
+overlap their neighbours and small ones leave holes. Here each layer's marks
+take, largest first, the cheapest spot (lowest force potential, or nearest the
+container's centre) whose *clearance* holds their footprint disc: the
+distance to the container's edge and to every disc already placed. Spots lie
+on a fine hexagonal lattice; each keeps its clearance, lowered around every
+disc placed. Layers sharing a container are packed in block order, so a
+layer that blocks on another starts in the room the other left (above it,
+under a downward force).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .lattice import Region, hex_points
+
+SPREAD = 1.5          # footprint radii max / min above which a layer is packed by size
+STEP = 0.3            # spot spacing, in median footprint radii
+MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
+CHUNK = 4096          # spots scanned at once for the first that fits
+
+
+def spread(radius: np.ndarray) -> bool:
+    """Whether footprint radii ``(n,)`` spread enough for a size-aware start."""
+    return len(radius) > 1 and float(radius.max()) > SPREAD * float(radius.min())
+
+
+class Packing:
+    """Spots of one container and their clearances (canvas px).
+
+    ``region``: the container; ``step``: spot spacing in canvas px; ``reach``:
+    the largest disc radius still to be placed (clearances matter up to it).
+    """
+
+    def __init__(self, region: Region, step: float, reach: float):
+        step = max(step, math.sqrt(region.area / MAX_SPOTS / (math.sqrt(3) / 2)))
+        pts = hex_points(region.bbox, step)
+        depth = region.depth_at(pts)
+        keep = depth > 0
+        self.points, self.clear = pts[keep], depth[keep]
+        self.tree = cKDTree(self.points) if len(self.points) else None
+        self.reach = reach
+
+    def stamp(self, centers: np.ndarray, radii: np.ndarray) -> None:
+        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` placed."""
+        if self.tree is None:
+            return
+        for c, r in zip(centers, radii):
+            near = np.asarray(self.tree.query_ball_point(c, r + self.reach), dtype=np.int64)
+            if len(near):
+                gap = np.hypot(*(self.points[near] - c).T) - r
+                self.clear[near] = np.minimum(self.clear[near], gap)
+
+    def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray):
+        """Centres ``(n, 2)`` for discs ``radii (n,)``, largest first (``ranks`` break ties),
+        each at the cheapest spot that holds it (``cost (M,)`` per spot, as ordered by
+        ``self.points``), else at the roomiest spot; and whether all fitted."""
+        if self.tree is None:
+            raise ValueError("container: no spot inside it to place marks on")
+        by_cost = np.argsort(cost, kind="stable")
+        points, clear = self.points[by_cost], self.clear[by_cost]
+        tree = cKDTree(points)
+        centers, fitted = np.zeros((len(radii), 2)), True
+        dead, smallest = 0, float(radii.min())
+        for i in np.lexsort((ranks, -radii)):
+            r = float(radii[i])
+            dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
+            k = _first(clear, r, dead, -1)
+            if k < 0:
+                k, fitted = int(np.argmax(clear)), False
+            centers[i] = points[k]
+            near = np.asarray(tree.query_ball_point(points[k], r + self.reach), dtype=np.int64)
+            clear[near] = np.minimum(clear[near], np.hypot(*(points[near] - points[k]).T) - r)
+        self.clear[by_cost] = clear
+        return centers, fitted
+
+
+def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
+    """Index of the first spot from ``start`` whose clearance holds ``r``; ``missing`` if none."""
+    for lo in range(start, len(clear), CHUNK):
+        hit = clear[lo:lo + CHUNK] >= r
+        k = int(np.argmax(hit))
+        if hit[k]:
+            return lo + k
+    return missing
