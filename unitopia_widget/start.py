@@ -97,6 +97,50 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     return s
 
 
+def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps):
+    """``(G,)`` starting scales: each controlled group with layers packed by size starts at
+    the largest scale (up to ``caps (L,)``, the widest disc) at which those layers still
+    pack, largest mark first, into their containers (bisection on the log scale)."""
+    out = np.array(group_scale, dtype=float)
+    rho = min(1.0, 600.0 / max(canvas))
+    radius, regions = footprint_radius(units), {}
+    for g in np.nonzero(group_free)[0]:
+        members = [i for i in order if scale_group[i] == g and layers[i].emitter is None]
+        if not any(spread(radius[units.layer == i]) for i in members):
+            continue
+        for i in members:
+            key = repr(layers[i].region.to_json())
+            if key not in regions:
+                regions[key] = Region(layers[i].region.coverage(canvas, rho), rho)
+
+        def fits(scale: float) -> bool:
+            packings = {}
+            for i in members:
+                key, r = repr(layers[i].region.to_json()), radius[units.layer == i] * scale
+                if key not in packings:
+                    mine = np.isin(units.layer, members)
+                    packings[key] = Packing(regions[key], STEP * float(np.median(radius[mine])) * scale,
+                                            float(radius[mine].max()) * scale)
+                pack = packings[key]
+                ranks = np.argsort(np.argsort(units.order[units.layer == i], kind="stable"))
+                cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
+                if not pack.place(r, cost, ranks)[1]:
+                    return False
+            return True
+
+        top = math.log(min(caps[i] for i in members))
+        lo, hi = math.log(out[g]), top
+        if lo >= hi or not fits(out[g]):
+            lo, hi = lo - math.log(2.0), min(lo, top)
+        if fits(math.exp(hi)):
+            lo = hi
+        for _ in range(6 if lo < hi else 0):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
+        out[g] = math.exp(lo)
+    return out
+
+
 def _room_ahead(region: Region, center: np.ndarray, direction: np.ndarray, r: np.ndarray):
     """``(n,)`` in [0, 1]: the share of a full drift (``DRIFT_TRAVEL`` radii) each mark can
     travel along ``direction (n, 2)`` before its footprint ``r (n,)`` reaches the edge."""
