@@ -20,14 +20,19 @@ from scipy.spatial import cKDTree
 from .lattice import Region, hex_points
 
 SPREAD = 1.5          # footprint radii max / min above which a layer is packed by size
+ASPECT = 2.0          # box long / short side up to which a mark's disc stands for it
 STEP = 0.3            # spot spacing, in median footprint radii
 MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
 CHUNK = 4096          # spots scanned at once for the first that fits
 
 
-def spread(radius: np.ndarray) -> bool:
-    """Whether footprint radii ``(n,)`` spread enough for a size-aware start."""
-    return len(radius) > 1 and float(radius.max()) > SPREAD * float(radius.min())
+def packable(radius: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> bool:
+    """Whether a layer's marks get a size-aware start: footprint radii ``(n,)`` spread,
+    and every box (half sides ``(n,)``) compact enough for its disc to stand for it
+    (a tall, thin strand's disc would let neighbours cross it)."""
+    aspect = np.maximum(half_w, half_h) / np.maximum(np.minimum(half_w, half_h), 1e-12)
+    return (len(radius) > 1 and float(radius.max()) > SPREAD * float(radius.min())
+            and float(aspect.max()) <= ASPECT)
 
 
 class Packing:

@@ -19,7 +19,7 @@ from .emitters import CurveEmitter, GridEmitter
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
-from .pack import STEP, Packing, spread
+from .pack import STEP, Packing, packable
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -74,7 +74,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
-        elif spread(r) or key in packings:   # sizes spread: largest first, small ones into gaps
+        elif packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
+            # sizes spread: largest first, small ones into the gaps
             if key not in packings:
                 packings[key] = Packing(region, STEP * float(np.median(r)), float(radius.max()))
                 packings[key].stamp(*taken[key])
@@ -106,7 +107,8 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
     radius, regions = footprint_radius(units), {}
     for g in np.nonzero(group_free)[0]:
         members = [i for i in order if scale_group[i] == g and layers[i].emitter is None]
-        if not any(spread(radius[units.layer == i]) for i in members):
+        if not any(packable(radius[m], units.half_w[m], units.half_h[m])
+                   for m in (units.layer == i for i in members)):
             continue
         for i in members:
             key = repr(layers[i].region.to_json())
