@@ -264,7 +264,8 @@ class _Scales:
         return per[0] / drawn, per[1] / drawn
 
     def room(self, values, index, owner_layer) -> np.ndarray:
-        """Bool ``(G,)``: controlled groups whose closed containers still have room."""
+        """Bool ``(G,)``: controlled groups whose closed containers all still have room
+        (a shared scale that grows for an empty container overfills a full one)."""
         p, out = self.p, np.zeros(self.count, dtype=bool)
         if p.reach is None or not self.free.any():
             return out
@@ -274,13 +275,15 @@ class _Scales:
         inside = p.terms.inside.cpu().numpy()
         scale = self.unit_scale()
         for g in np.nonzero(self.free)[0]:
+            roomy = []
             for layer in np.nonzero(self.group == g)[0]:
                 mine = p.layer == layer
                 if not inside[layer].any():
                     continue
                 reach = float(np.median(p.reach[mine] * scale[mine])) * p.grid.rho
-                if empty_share(cover, inside[layer].reshape(p.grid.shape), reach) > p.room_target:
-                    out[g] = True
+                roomy.append(empty_share(cover, inside[layer].reshape(p.grid.shape), reach)
+                             > p.room_target)
+            out[g] = bool(roomy) and all(roomy)
         return out
 
 
