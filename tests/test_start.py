@@ -11,7 +11,7 @@ import unitopia_widget as uw
 from ink import ink_metrics
 from unitopia_widget import engine
 from unitopia_widget.lattice import Region
-from unitopia_widget.pack import Packing, packable
+from unitopia_widget.pack import Packing, packable, rows
 from unitopia_widget.solver import _Scales
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -136,3 +136,32 @@ def test_an_open_pile_emitted_onto_a_seesaw_legalises_below_one_percent():
     chart.layout()
     m = ink_metrics(chart.to_svg(legend=False), chart.canvas, k=1)
     assert m["overlap"] < 0.01           # 1.24% when fixed scales shrank by the overlap alone
+
+
+def test_thin_marks_are_laid_in_rows_along_the_container_without_overlap():
+    inside = np.zeros((120, 340), np.float32)
+    inside[10:110, 20:320] = 1.0
+    region = Region(inside, 1.0)
+    assert abs(region.axis()) < 0.01                                   # a wide box: along x
+    assert abs(abs(Region(inside.T.copy(), 1.0).axis()) - math.pi / 2) < 0.01
+    length = np.linspace(40, 120, 20)
+    center = rows(region, length, np.full(20, 4.0), region.axis())
+    ends = np.concatenate([center - [[l / 2, 0] for l in length], center + [[l / 2, 0] for l in length]])
+    assert ((ends[:, 0] >= 19) & (ends[:, 0] <= 321)).all()           # every rod inside
+    for y in np.unique(center[:, 1]):                                  # rods in a row: end to end
+        row = np.nonzero(center[:, 1] == y)[0]
+        lo, hi = center[row, 0] - length[row] / 2, center[row, 0] + length[row] / 2
+        order = np.argsort(lo)
+        assert (lo[order][1:] >= hi[order][:-1] - 1e-6).all()
+    assert len(np.unique(center[:, 1])) > 1
+
+
+def test_turnable_strands_start_along_a_wide_container():
+    df = pd.DataFrame({"length": lognormal(30, 4, 3)})
+    strand = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 80">'
+                         '<rect width="4" height="80"/></svg>')
+    chart = uw.Chart(df, mark=strand, height="length", rotate=True, canvas=(400, 300),
+                     boundary="closed", container=uw.Container.ellipse(200, 150, 180, 90))
+    problem, units, center, _ = start_of(chart)
+    angle = problem.placement.transforms()[1].detach().numpy()
+    assert np.allclose(np.abs(angle), math.pi / 2, atol=0.02)          # upright boxes lie flat

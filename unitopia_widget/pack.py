@@ -23,6 +23,7 @@ SPREAD = 1.5          # footprint radii max / min above which a layer is packed 
 ASPECT = 2.0          # box long / short side up to which a mark's disc stands for it
 STEP = 0.3            # spot spacing, in median footprint radii
 MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
+ROWS_FILL = 0.75      # rows of thin marks: spaced for this share of the room their length needs
 CHUNK = 4096          # spots scanned at once for the first that fits
 
 
@@ -93,3 +94,35 @@ def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
         if hit[k]:
             return lo + k
     return missing
+
+
+def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> np.ndarray:
+    """Centres ``(n, 2)`` for thin marks laid along ``axis`` (radians) in rows across the
+    region, like words in lines: rows spaced so the marks' total length fills the area,
+    each mark, longest first, into the first row span with room for its ``length (n,)``
+    (canvas px) whose depth holds half its ``width (n,)``; marks left over go to the spans
+    with most room left (the optimiser then parts them)."""
+    e1, e2 = np.array([math.cos(axis), math.sin(axis)]), np.array([-math.sin(axis), math.cos(axis)])
+    x0, y0, x1, y1 = region.bbox
+    mid, half = np.array([(x0 + x1) / 2, (y0 + y1) / 2]), math.hypot(x1 - x0, y1 - y0) / 2
+    gap = max(ROWS_FILL * region.area / float(length.sum()), float(width.max()))
+    step = max(float(width.min()) / 2, half / 2000)
+    u = np.arange(-half, half, step)
+    spans = []   # [v, u start, room left]
+    for v in np.arange(-half + gap / 2, half, gap):
+        inside = region.depth_at(mid + u[:, None] * e1 + v * e2) >= float(np.median(width)) / 2
+        edge = np.diff(np.concatenate([[0], inside.astype(np.int8), [0]]))
+        for a, b in zip(np.nonzero(edge == 1)[0], np.nonzero(edge == -1)[0]):
+            spans.append([v, u[a], (b - a) * step])
+    if not spans:
+        raise ValueError("container: no row inside it to lay thin marks along")
+    spans = np.array(spans)
+    centers = np.zeros((len(length), 2))
+    for i in np.argsort(-length, kind="stable"):
+        fit = np.nonzero(spans[:, 2] >= length[i])[0]
+        k = int(fit[0]) if len(fit) else int(np.argmax(spans[:, 2]))
+        v, start, room = spans[k]
+        centers[i] = mid + (start + length[i] / 2) * e1 + v * e2
+        spans[k, 1] += length[i]
+        spans[k, 2] = room - length[i]
+    return centers

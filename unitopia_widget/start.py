@@ -19,7 +19,7 @@ from .emitters import CurveEmitter, GridEmitter
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
-from .pack import STEP, Packing, packable
+from .pack import ASPECT, STEP, Packing, packable, rows
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -74,6 +74,11 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
+        elif _lengthwise(layer, units, idx) and key not in packings:   # thin marks: in rows
+            hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
+            band = 1 + 2 * units.margin[idx]
+            s.center[idx] = rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
+                                 region.axis())
         elif packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
             # sizes spread: largest first, small ones into the gaps
             if key not in packings:
@@ -93,6 +98,11 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         s.movable[idx] = speed > 0
         s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
         s.angle[idx], s.turnable[idx] = _angles(layer)
+        if _lengthwise(layer, units, idx):
+            # thin marks start along the container's long axis, side by side: upright, the
+            # longest spans a wide container's height and keeps the scale from growing
+            s.angle[idx] = np.where(units.half_h[idx] > units.half_w[idx],
+                                    region.axis() - math.pi / 2, region.axis())
     jitter = torch.rand((n, 2), generator=generator).numpy() - 0.5
     s.center += jitter * 1e-3 * radius[:, None] * s.movable[:, None]
     return s
@@ -141,6 +151,15 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
             lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
         out[g] = math.exp(lo)
     return out
+
+
+def _lengthwise(layer, units, idx) -> bool:
+    """Whether a layer's marks start laid along its container: turnable, no orientation
+    asked for, no emitter, and every box thin (long side over ``ASPECT`` short sides)."""
+    long, short = np.maximum(units.half_w[idx], units.half_h[idx]), np.minimum(
+        units.half_w[idx], units.half_h[idx])
+    return bool(layer.rotate and layer.orientation is None and layer.emitter is None
+                and (long > ASPECT * short).all())
 
 
 def _room_ahead(region: Region, center: np.ndarray, direction: np.ndarray, r: np.ndarray):
