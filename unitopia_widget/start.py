@@ -74,21 +74,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
-        elif _lengthwise(layer, units, idx) and key not in packings:   # thin marks: in rows
-            hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
-            band = 1 + 2 * units.margin[idx]
-            s.center[idx] = rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
-                                 region.axis())
-        elif packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
-            # sizes spread: largest first, small ones into the gaps
-            if key not in packings:
-                packings[key] = Packing(region, STEP * float(np.median(r)), float(radius.max()))
-                packings[key].stamp(*taken[key])
-            cost = spot_cost(layer, container, canvas, packings[key].points)
-            s.center[idx] = packings[key].place(r, cost, ranks)[0]
         else:
             try:
-                s.center[idx] = _settled(region, r, ranks, layer, taken[key][0], container, canvas)
+                s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
+                                       packings, key, float(radius.max()), canvas)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
         if key in packings and emitter is not None:   # emitted marks take room from packed ones
@@ -151,6 +140,25 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
             lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
         out[g] = math.exp(lo)
     return out
+
+
+def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas):
+    """Starting centres ``(n, 2)`` of a layer without an emitter: thin turnable marks in rows
+    along the container, spread sizes packed by size (one packing per container, shared by
+    the layers in it), else lattice spots ranked by the forces."""
+    container = layer.region
+    if _lengthwise(layer, units, idx) and key not in packings:
+        hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
+        band = 1 + 2 * units.margin[idx]
+        return rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
+                    region.axis())
+    if packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
+        if key not in packings:   # sizes spread: largest first, small ones into the gaps
+            packings[key] = Packing(region, STEP * float(np.median(r)), reach)
+            packings[key].stamp(*taken)
+        cost = spot_cost(layer, container, canvas, packings[key].points)
+        return packings[key].place(r, cost, ranks)[0]
+    return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 
 def _lengthwise(layer, units, idx) -> bool:
