@@ -27,7 +27,7 @@ from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from .scene import block_order
 from .solver import Problem, Result, solve
-from .start import any_angle, orientation_targets, start_positions
+from .start import any_angle, orientation_targets, packed_scales, start_positions
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
@@ -178,14 +178,20 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared"):
             diameters = 2 * np.sqrt(units.area[mine] / math.pi) * (1 + 2 * units.margin[mine])
             (fixed if i in fixed else free)[i] = min((fixed if i in fixed else free)[i],
                                                      0.95 * emitter.curve.length / diameters.sum())
-        longest = float(np.max(np.maximum(units.half_w[mine], units.half_h[mine])))
-        cap[i] = 0.95 * _widest_disc(layer.region, canvas) / longest
+        cap[i] = scale_cap(units, layers, canvas, i)
     if scales == "independent":
         group = np.arange(len(layers))
         scale = np.array([min(fixed.get(i, free.get(i)), cap[i]) for i in range(len(layers))])
         return scale, np.array([i not in fixed for i in range(len(layers))]), group
     start = min(fixed.values()) if fixed else min(free.values())
     return np.array([min(start, *cap.values())]), np.array([not fixed]), np.zeros(len(layers), int)
+
+
+def scale_cap(units: Units, layers, canvas, i: int) -> float:
+    """The largest scale at which layer ``i``'s longest mark fits its container's widest disc."""
+    mine = units.layer == i
+    longest = float(np.max(np.maximum(units.half_w[mine], units.half_h[mine])))
+    return 0.95 * _widest_disc(layers[i].region, canvas) / longest
 
 
 def _widest_disc(container, canvas) -> float:
@@ -200,6 +206,9 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     """Assemble the solver's problem for ``units`` laid out by ``layers``."""
     order = block_order(layers)
     group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales)
+    caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
+    group_scale = packed_scales(units, layers, order, canvas, group_scale, group_free,
+                                scale_group, caps)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
     foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * unit_scale

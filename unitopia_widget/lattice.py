@@ -23,6 +23,12 @@ class Region:
         self.bbox = (xs.min() / rho, ys.min() / rho, (xs.max() + 1) / rho, (ys.max() + 1) / rho)
         self.area = float(coverage.sum()) / rho ** 2
 
+    def axis(self) -> float:
+        """Angle (radians, from +x towards +y) of the inside's long principal axis."""
+        ys, xs = np.nonzero(self.depth > 0)
+        cov = np.cov(np.stack([xs, ys]).astype(float))
+        return 0.5 * math.atan2(2 * cov[0, 1], cov[0, 0] - cov[1, 1])
+
     def depth_at(self, points: np.ndarray) -> np.ndarray:
         """Distance (canvas px) from each point ``(k, 2)`` to the region's outside; 0 outside."""
         h, w = self.depth.shape

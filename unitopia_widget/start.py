@@ -19,6 +19,7 @@ from .emitters import CurveEmitter, GridEmitter
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
+from .pack import ASPECT, STEP, Packing, packable, rows
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -44,11 +45,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     n = len(units.layer)
     s = Start(center=np.zeros((n, 2)), angle=np.zeros(n), movable=np.ones(n, bool),
               turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
-    # the disc that holds a mark's footprint when packed: area-equivalent, widened for
-    # shapes less compact than a disc (a star needs more room than its area)
-    compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
-    radius = np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin) * scale
-    regions, taken = {}, {}
+    radius = footprint_radius(units) * scale
+    regions, taken, packings = {}, {}, {}
     for i in order:
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
@@ -60,7 +58,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
-            taken[key] = np.zeros((0, 2))
+            taken[key] = (np.zeros((0, 2)), np.zeros(0))
         region, r = regions[key], radius[idx]
         emitter = layer.emitter
         if isinstance(emitter, CurveEmitter):
@@ -78,17 +76,98 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
-                s.center[idx] = _settled(region, r, ranks, layer, taken[key], container, canvas)
+                s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
+                                       packings, key, float(radius.max()), canvas)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
-        taken[key] = np.concatenate([taken[key], s.center[idx]])
+        if key in packings and emitter is not None:   # emitted marks take room from packed ones
+            packings[key].stamp(s.center[idx], r)
+        taken[key] = (np.concatenate([taken[key][0], s.center[idx]]), np.concatenate([taken[key][1], r]))
         speed = 1.0 if emitter is None else emitter.speed
         s.movable[idx] = speed > 0
         s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
         s.angle[idx], s.turnable[idx] = _angles(layer)
+        if _lengthwise(layer, units, idx):
+            # thin marks start along the container's long axis, side by side: upright, the
+            # longest spans a wide container's height and keeps the scale from growing
+            s.angle[idx] = np.where(units.half_h[idx] > units.half_w[idx],
+                                    region.axis() - math.pi / 2, region.axis())
     jitter = torch.rand((n, 2), generator=generator).numpy() - 0.5
     s.center += jitter * 1e-3 * radius[:, None] * s.movable[:, None]
     return s
+
+
+def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps):
+    """``(G,)`` starting scales: each controlled group with layers packed by size starts at
+    the largest scale (up to ``caps (L,)``, the widest disc) at which those layers still
+    pack, largest mark first, into their containers (bisection on the log scale)."""
+    out = np.array(group_scale, dtype=float)
+    rho = min(1.0, 600.0 / max(canvas))
+    radius, regions = footprint_radius(units), {}
+    for g in np.nonzero(group_free)[0]:
+        members = [i for i in order if scale_group[i] == g and layers[i].emitter is None]
+        if not any(packable(radius[m], units.half_w[m], units.half_h[m])
+                   for m in (units.layer == i for i in members)):
+            continue
+        for i in members:
+            key = repr(layers[i].region.to_json())
+            if key not in regions:
+                regions[key] = Region(layers[i].region.coverage(canvas, rho), rho)
+
+        def fits(scale: float) -> bool:
+            packings = {}
+            for i in members:
+                key, r = repr(layers[i].region.to_json()), radius[units.layer == i] * scale
+                if key not in packings:
+                    mine = np.isin(units.layer, members)
+                    packings[key] = Packing(regions[key], STEP * float(np.median(radius[mine])) * scale,
+                                            float(radius[mine].max()) * scale)
+                pack = packings[key]
+                ranks = np.argsort(np.argsort(units.order[units.layer == i], kind="stable"))
+                cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
+                if not pack.place(r, cost, ranks)[1]:
+                    return False
+            return True
+
+        top = math.log(min(caps[i] for i in members))
+        lo, hi = math.log(out[g]), top
+        if lo >= hi or not fits(out[g]):
+            lo, hi = lo - math.log(2.0), min(lo, top)
+        if fits(math.exp(hi)):
+            lo = hi
+        for _ in range(6 if lo < hi else 0):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
+        out[g] = math.exp(lo)
+    return out
+
+
+def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas):
+    """Starting centres ``(n, 2)`` of a layer without an emitter: thin turnable marks in rows
+    along the container, spread sizes packed by size (one packing per container, shared by
+    the layers in it), else lattice spots ranked by the forces."""
+    container = layer.region
+    if _lengthwise(layer, units, idx) and key not in packings:
+        hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
+        band = 1 + 2 * units.margin[idx]
+        return rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
+                    region.axis())
+    if packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
+        if key not in packings:   # sizes spread: largest first, small ones into the gaps
+            packings[key] = Packing(region, STEP * float(np.median(r)), reach)
+            packings[key].stamp(*taken)
+        cost = spot_cost(layer, container, canvas, packings[key].points)
+        return packings[key].place(r, cost, ranks)[0]
+    return _settled(region, r, ranks, layer, taken[0], container, canvas)
+
+
+def _lengthwise(layer, units, idx) -> bool:
+    """Whether a layer's marks start laid along its container: turnable, no orientation
+    asked for, no emitter, and every box thin (long side over ``ASPECT`` short sides)."""
+    long, short = np.maximum(units.half_w[idx], units.half_h[idx]), np.minimum(
+        units.half_w[idx], units.half_h[idx])
+    return bool(layer.rotate and layer.orientation is None and layer.emitter is None
+                and (long > ASPECT * short).all())
 
 
 def _room_ahead(region: Region, center: np.ndarray, direction: np.ndarray, r: np.ndarray):
@@ -116,16 +195,28 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
         near = cKDTree(taken).query(lattice, k=1)[0]
         free = lattice[near > 0.9 * spacing]
         lattice = free if len(free) >= count else lattice[np.argsort(-near)[:max(count, 1)]]
-    pts = torch.tensor(lattice, dtype=torch.float64)
-    if layer.forces:
-        cost = potential(layer.forces, pts).numpy()
-    else:
-        cx, cy = container.centroid(canvas)
-        cost = np.hypot(lattice[:, 0] - cx, lattice[:, 1] - cy)
+    cost = spot_cost(layer, container, canvas, lattice)
     best = lattice[np.argsort(cost, kind="stable")[:count]]
     if len(best) < count:
         raise ValueError(f"layer {layer.name!r}: its container is too small for {count} marks")
     return best[ranks]
+
+
+def spot_cost(layer, container, canvas, points: np.ndarray) -> np.ndarray:
+    """``(k,)`` how little a layer's marks want to start at ``points (k, 2)``: the
+    potential of its forces, or the distance to its container's centre."""
+    if layer.forces:
+        return potential(layer.forces, torch.tensor(points, dtype=torch.float64)).numpy()
+    cx, cy = container.centroid(canvas)
+    return np.hypot(points[:, 0] - cx, points[:, 1] - cy)
+
+
+def footprint_radius(units) -> np.ndarray:
+    """``(N,)`` at scale 1: the disc that holds a mark's footprint when packed,
+    area-equivalent and widened for shapes less compact than a disc (a star needs more
+    room than its area), margins included."""
+    compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
+    return np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin)
 
 
 def _angles(layer):

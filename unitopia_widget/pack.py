@@ -1,0 +1,128 @@
+"""Size-aware start: marks packed by decreasing size, small ones into the gaps.
+
+A wide spread of sizes jams on a lattice sized for the mean mark: large marks
+overlap their neighbours and small ones leave holes. Here each layer's marks
+take, largest first, the cheapest spot (lowest force potential, or nearest the
+container's centre) whose *clearance* holds their footprint disc: the
+distance to the container's edge and to every disc already placed. Spots lie
+on a fine hexagonal lattice; each keeps its clearance, lowered around every
+disc placed. Layers sharing a container are packed in block order, so a
+layer that blocks on another starts in the room the other left (above it,
+under a downward force).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .lattice import Region, hex_points
+
+SPREAD = 1.5          # footprint radii max / min above which a layer is packed by size
+ASPECT = 2.0          # box long / short side up to which a mark's disc stands for it
+STEP = 0.3            # spot spacing, in median footprint radii
+MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
+ROWS_FILL = 0.75      # rows of thin marks: spaced for this share of the room their length needs
+CHUNK = 4096          # spots scanned at once for the first that fits
+
+
+def packable(radius: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> bool:
+    """Whether a layer's marks get a size-aware start: footprint radii ``(n,)`` spread,
+    and every box (half sides ``(n,)``) compact enough for its disc to stand for it
+    (a tall, thin strand's disc would let neighbours cross it)."""
+    aspect = np.maximum(half_w, half_h) / np.maximum(np.minimum(half_w, half_h), 1e-12)
+    return (len(radius) > 1 and float(radius.max()) > SPREAD * float(radius.min())
+            and float(aspect.max()) <= ASPECT)
+
+
+class Packing:
+    """Spots of one container and their clearances (canvas px).
+
+    ``region``: the container; ``step``: spot spacing in canvas px; ``reach``:
+    the largest disc radius still to be placed (clearances matter up to it).
+    """
+
+    def __init__(self, region: Region, step: float, reach: float):
+        step = max(step, math.sqrt(region.area / MAX_SPOTS / (math.sqrt(3) / 2)))
+        pts = hex_points(region.bbox, step)
+        depth = region.depth_at(pts)
+        keep = depth > 0
+        self.points, self.clear = pts[keep], depth[keep]
+        self.tree = cKDTree(self.points) if len(self.points) else None
+        self.reach = reach
+
+    def stamp(self, centers: np.ndarray, radii: np.ndarray) -> None:
+        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` placed."""
+        if self.tree is None:
+            return
+        for c, r in zip(centers, radii):
+            near = np.asarray(self.tree.query_ball_point(c, r + self.reach), dtype=np.int64)
+            if len(near):
+                gap = np.hypot(*(self.points[near] - c).T) - r
+                self.clear[near] = np.minimum(self.clear[near], gap)
+
+    def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray):
+        """Centres ``(n, 2)`` for discs ``radii (n,)``, largest first (``ranks`` break ties),
+        each at the cheapest spot that holds it (``cost (M,)`` per spot, as ordered by
+        ``self.points``), else at the roomiest spot; and whether all fitted."""
+        if self.tree is None:
+            raise ValueError("container: no spot inside it to place marks on")
+        by_cost = np.argsort(cost, kind="stable")
+        points, clear = self.points[by_cost], self.clear[by_cost]
+        tree = cKDTree(points)
+        centers, fitted = np.zeros((len(radii), 2)), True
+        dead, smallest = 0, float(radii.min())
+        for i in np.lexsort((ranks, -radii)):
+            r = float(radii[i])
+            dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
+            k = _first(clear, r, dead, -1)
+            if k < 0:
+                k, fitted = int(np.argmax(clear)), False
+            centers[i] = points[k]
+            near = np.asarray(tree.query_ball_point(points[k], r + self.reach), dtype=np.int64)
+            clear[near] = np.minimum(clear[near], np.hypot(*(points[near] - points[k]).T) - r)
+        self.clear[by_cost] = clear
+        return centers, fitted
+
+
+def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
+    """Index of the first spot from ``start`` whose clearance holds ``r``; ``missing`` if none."""
+    for lo in range(start, len(clear), CHUNK):
+        hit = clear[lo:lo + CHUNK] >= r
+        k = int(np.argmax(hit))
+        if hit[k]:
+            return lo + k
+    return missing
+
+
+def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> np.ndarray:
+    """Centres ``(n, 2)`` for thin marks laid along ``axis`` (radians) in rows across the
+    region, like words in lines: rows spaced so the marks' total length fills the area,
+    each mark, longest first, into the first row span with room for its ``length (n,)``
+    (canvas px) whose depth holds half its ``width (n,)``; marks left over go to the spans
+    with most room left (the optimiser then parts them)."""
+    e1, e2 = np.array([math.cos(axis), math.sin(axis)]), np.array([-math.sin(axis), math.cos(axis)])
+    x0, y0, x1, y1 = region.bbox
+    mid, half = np.array([(x0 + x1) / 2, (y0 + y1) / 2]), math.hypot(x1 - x0, y1 - y0) / 2
+    gap = max(ROWS_FILL * region.area / float(length.sum()), float(width.max()))
+    step = max(float(width.min()) / 2, half / 2000)
+    u = np.arange(-half, half, step)
+    spans = []   # [v, u start, room left]
+    for v in np.arange(-half + gap / 2, half, gap):
+        inside = region.depth_at(mid + u[:, None] * e1 + v * e2) >= float(np.median(width)) / 2
+        edge = np.diff(np.concatenate([[0], inside.astype(np.int8), [0]]))
+        for a, b in zip(np.nonzero(edge == 1)[0], np.nonzero(edge == -1)[0]):
+            spans.append([v, u[a], (b - a) * step])
+    if not spans:
+        raise ValueError("container: no row inside it to lay thin marks along")
+    spans = np.array(spans)
+    centers = np.zeros((len(length), 2))
+    for i in np.argsort(-length, kind="stable"):
+        fit = np.nonzero(spans[:, 2] >= length[i])[0]
+        k = int(fit[0]) if len(fit) else int(np.argmax(spans[:, 2]))
+        v, start, room = spans[k]
+        centers[i] = mid + (start + length[i] / 2) * e1 + v * e2
+        spans[k, 1] += length[i]
+        spans[k, 2] = room - length[i]
+    return centers
