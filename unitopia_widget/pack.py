@@ -1,9 +1,11 @@
-"""Size-aware start: marks packed by decreasing size, small ones into the gaps.
+"""Size-aware start: each mark packed into the cheapest spot that holds it.
 
 A wide spread of sizes jams on a lattice sized for the mean mark: large marks
 overlap their neighbours and small ones leave holes. Here each layer's marks
-take, largest first, the cheapest spot (lowest force potential, or nearest the
-container's centre) whose *clearance* holds their footprint disc: the
+take, one by one, the cheapest spot (lowest force potential, or nearest the
+container's centre) whose *clearance* holds their footprint disc. A closed
+container to fill is packed largest first, small marks into the gaps; a pile
+under forces in data order, so sizes mix in it. The clearance is the
 distance to the container's edge and to every disc already placed. Spots lie
 on a fine hexagonal lattice; each keeps its clearance, lowered around every
 disc placed. Layers sharing a container are packed in block order, so a
@@ -62,10 +64,12 @@ class Packing:
                 gap = np.hypot(*(self.points[near] - c).T) - r
                 self.clear[near] = np.minimum(self.clear[near], gap)
 
-    def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray):
-        """Centres ``(n, 2)`` for discs ``radii (n,)``, largest first (``ranks`` break ties),
-        each at the cheapest spot that holds it (``cost (M,)`` per spot, as ordered by
-        ``self.points``), else at the roomiest spot; and whether all fitted."""
+    def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
+              largest_first: bool = True):
+        """Centres ``(n, 2)`` for discs ``radii (n,)``, each at the cheapest spot that holds
+        it (``cost (M,)`` per spot, as ordered by ``self.points``), else at the roomiest
+        spot; and whether all fitted. ``largest_first``: by decreasing size (``ranks`` break
+        ties), else in ``ranks`` order."""
         if self.tree is None:
             raise ValueError("container: no spot inside it to place marks on")
         by_cost = np.argsort(cost, kind="stable")
@@ -73,7 +77,7 @@ class Packing:
         tree = cKDTree(points)
         centers, fitted = np.zeros((len(radii), 2)), True
         dead, smallest = 0, float(radii.min())
-        for i in np.lexsort((ranks, -radii)):
+        for i in np.lexsort((ranks, -radii)) if largest_first else np.argsort(ranks, kind="stable"):
             r = float(radii[i])
             dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
             k = _first(clear, r, dead, -1)

@@ -153,11 +153,14 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         return rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
                     region.axis())
     if packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
-        if key not in packings:   # sizes spread: largest first, small ones into the gaps
+        if key not in packings:
             packings[key] = Packing(region, STEP * float(np.median(r)), reach)
             packings[key].stamp(*taken)
         cost = spot_cost(layer, container, canvas, packings[key].points)
-        return packings[key].place(r, cost, ranks)[0]
+        # a container to fill: largest first, small ones into the gaps; a pile under forces:
+        # in data order (or ``order=``), so sizes mix and order still reads from the pile
+        fill = layer.boundary == "closed" and layer.fill is None
+        return packings[key].place(r, cost, ranks, largest_first=fill)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 
