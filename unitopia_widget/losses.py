@@ -21,6 +21,7 @@ per-layer sums stay on the device (``terms.sums``) for the solver to fetch.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import torch
@@ -44,26 +45,20 @@ class CanvasTerms:
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
     _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
 
-    @property
+    @functools.cached_property
     def inside_total(self) -> float:
         """The fill target's area in raster px^2 (closed layers)."""
-        if not hasattr(self, "_inside_total"):
-            self._inside_total = float(self.inside.sum())
-        return self._inside_total
+        return float(self.inside.sum())
 
-    @property
+    @functools.cached_property
     def inside_host(self):
         """The fill target ``(L, S)`` as a host numpy array (copied from the device once)."""
-        if not hasattr(self, "_inside_host"):
-            self._inside_host = self.inside.cpu().numpy()
-        return self._inside_host
+        return self.inside.cpu().numpy()
 
-    @property
+    @functools.cached_property
     def has_obstacles(self) -> bool:
         """Whether some layer blocks on another (read once: the blocks are fixed)."""
-        if not hasattr(self, "_has_obstacles"):
-            self._has_obstacles = bool(self.blocks.any())
-        return self._has_obstacles
+        return bool(self.blocks.any())
 
     @property
     def stats(self) -> dict:
