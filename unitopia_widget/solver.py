@@ -178,7 +178,9 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         overlap_g, outside_g = ctl.crowding(sums[:3])
         if phase == "settle":
             # big steps while marks travel freely, small ones once they press on each other
-            if loss_value < best * (1 - 1e-3) - 1e-6:
+            # (marks still travelling that pile up raise the loss: the best so far, from
+            # before they met, is no reference for whether the pile has settled)
+            if loss_value < best * (1 - 1e-3) - 1e-6 or (travelling and loss_value > 1.5 * best):
                 best, since_best = loss_value, 0
             else:
                 since_best += 1
