@@ -196,7 +196,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             # (poking out is worse than touching: room never grows a scale past a mark outside)
             crowd = np.maximum(overlap_g, outside_g)
             grow = ctl.free & ((crowd < 0.5 * p.grow_overlap) | (
-                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < 0.4 * p.grow_overlap)))
+                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < ctl.grow_outside)))
             shrink = ctl.free & ((crowd > 1.5 * p.grow_overlap) | (outside_g > p.grow_overlap)) \
                 & (not travelling)
             ctl.log += p.scale_step * (grow.astype(float) - shrink.astype(float))
@@ -265,6 +265,12 @@ class _Scales:
         self.log = np.log(np.asarray(start, dtype=float))
         self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
         self.unit_group = self.group[p.layer]
+        # room grows a scale while its footprints poke out by less than this share: 0.4 of
+        # grow_overlap for bare marks, all of it with margins of 0.1 and more (a mark pressed
+        # against the edge pokes its margin band out long before its ink)
+        margin = np.array([np.median(p.margin[self.unit_group == g]) if (self.unit_group == g).any()
+                           else 0.0 for g in range(self.count)])
+        self.grow_outside = p.grow_overlap * np.minimum(0.4 + 6.0 * margin, 1.0)
 
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
