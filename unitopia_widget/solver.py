@@ -4,14 +4,16 @@ Schedule: a *settle* phase (a strong pull while marks travel, a gentle one
 once they rest; on closed layers the scale grows while the measured overlap
 stays below ``grow_overlap / 2`` and gives way above it once marks rest;
 layers held back for pouring start moving when the stage before them rests;
-ends when the loss stops improving and the marks rest) and a *polish* phase
+ends when the loss stops improving and the marks rest; a loss that rises while marks
+still travel, as they pile up, becomes the new best) and a *polish* phase
 (scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
 steps) that removes the last overlaps; if a layout still overlaps more than
 ``final_overlap`` or pokes out more than ``final_outside``, the scale gives up
 a little and polishing repeats (open layouts too: data-true sizes never push
 a mark out). Closed layers also grow while their container has *room*: a
 share over ``room_target`` farther than a median mark radius from any mark
-(``room.py``), even while jammed marks keep some overlap. Layers may have
+(``room.py``), even while jammed marks keep some overlap, and while their footprints
+poke out a little (more with margins: the band pokes out before the ink). Layers may have
 their own scales (``scale_group``): each group is controlled on its own layers.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
