@@ -73,7 +73,9 @@ def test_jammed_marks_move_into_the_room_of_a_closed_container():
     table = c.layout()
     yy, xx = np.mgrid[0:600, 0:800] + 0.5
     inside = (xx >= 150) & (xx <= 650) & (yy >= 100) & (yy <= 500)
-    assert emptiness(table, inside) < 0.06   # 0.15 when marks stay where they jam
+    # 0.15 when marks stay where they jam; 0.057 when the settle phase ended on the loss
+    # from before the falling marks met (polish from iteration 36, the top band empty)
+    assert emptiness(table, inside) < 0.02
     assert c.result.stats["overlap"] < 0.01
 
 

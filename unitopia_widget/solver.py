@@ -4,14 +4,16 @@ Schedule: a *settle* phase (a strong pull while marks travel, a gentle one
 once they rest; on closed layers the scale grows while the measured overlap
 stays below ``grow_overlap / 2`` and gives way above it once marks rest;
 layers held back for pouring start moving when the stage before them rests;
-ends when the loss stops improving and the marks rest) and a *polish* phase
+ends when the loss stops improving and the marks rest; a loss that rises while marks
+still travel, as they pile up, becomes the new best) and a *polish* phase
 (scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
 steps) that removes the last overlaps; if a layout still overlaps more than
 ``final_overlap`` or pokes out more than ``final_outside``, the scale gives up
 a little and polishing repeats (open layouts too: data-true sizes never push
 a mark out). Closed layers also grow while their container has *room*: a
 share over ``room_target`` farther than a median mark radius from any mark
-(``room.py``), even while jammed marks keep some overlap. Layers may have
+(``room.py``), even while jammed marks keep some overlap, and while their footprints
+poke out a little (more with margins: the band pokes out before the ink). Layers may have
 their own scales (``scale_group``): each group is controlled on its own layers.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
@@ -178,7 +180,9 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         overlap_g, outside_g = ctl.crowding(sums[:3])
         if phase == "settle":
             # big steps while marks travel freely, small ones once they press on each other
-            if loss_value < best * (1 - 1e-3) - 1e-6:
+            # (marks still travelling that pile up raise the loss: the best so far, from
+            # before they met, is no reference for whether the pile has settled)
+            if loss_value < best * (1 - 1e-3) - 1e-6 or (travelling and loss_value > 1.5 * best):
                 best, since_best = loss_value, 0
             else:
                 since_best += 1
@@ -194,7 +198,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             # (poking out is worse than touching: room never grows a scale past a mark outside)
             crowd = np.maximum(overlap_g, outside_g)
             grow = ctl.free & ((crowd < 0.5 * p.grow_overlap) | (
-                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < 0.4 * p.grow_overlap)))
+                room & (overlap_g < 1.5 * p.grow_overlap) & (outside_g < ctl.grow_outside)))
             shrink = ctl.free & ((crowd > 1.5 * p.grow_overlap) | (outside_g > p.grow_overlap)) \
                 & (not travelling)
             ctl.log += p.scale_step * (grow.astype(float) - shrink.astype(float))
@@ -263,6 +267,12 @@ class _Scales:
         self.log = np.log(np.asarray(start, dtype=float))
         self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
         self.unit_group = self.group[p.layer]
+        # room grows a scale while its footprints poke out by less than this share: 0.4 of
+        # grow_overlap for bare marks, all of it with margins of 0.1 and more (a mark pressed
+        # against the edge pokes its margin band out long before its ink)
+        margin = np.array([np.median(p.margin[self.unit_group == g]) if (self.unit_group == g).any()
+                           else 0.0 for g in range(self.count)])
+        self.grow_outside = p.grow_overlap * np.minimum(0.4 + 6.0 * margin, 1.0)
 
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
