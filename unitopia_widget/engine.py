@@ -144,7 +144,7 @@ def pick_device(device) -> str:
     return str(device)
 
 
-def initial_scale(units: Units, layers, canvas, scales: str = "shared"):
+def initial_scale(units: Units, layers, canvas, scales: str = "shared", caps=None):
     """The starting global scales and which of them are controlled during the layout.
 
     Open layers (and closed ones with a ``fill``) fix the scale so their marks
@@ -153,10 +153,14 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared"):
     the scale until the container is full. No scale lets a layer's largest
     mark outgrow the widest disc its container holds. ``scales="shared"``: one
     scale for all layers (sizes comparable across layers; the smallest fixed
-    one wins); ``"independent"``: one per layer. Returns ``(group_scale (G,),
-    group_free (G,) bool, scale_group (L,))``.
+    one wins); ``"independent"``: one per layer. ``caps``: ``(L,)`` each layer's
+    ``scale_cap``, when already known. Returns ``(group_scale (G,), group_free (G,)
+    bool, scale_group (L,))``.
     """
-    fixed, free, cap = {}, {}, {}
+    if caps is None:
+        caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
+    cap = dict(enumerate(caps))
+    fixed, free = {}, {}
     foot = units.area * (1 + 2 * units.margin) ** 2
     for i, layer in enumerate(layers):
         area = layer.region.area(canvas)
@@ -178,7 +182,6 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared"):
             diameters = 2 * np.sqrt(units.area[mine] / math.pi) * (1 + 2 * units.margin[mine])
             (fixed if i in fixed else free)[i] = min((fixed if i in fixed else free)[i],
                                                      0.95 * emitter.curve.length / diameters.sum())
-        cap[i] = scale_cap(units, layers, canvas, i)
     if scales == "independent":
         group = np.arange(len(layers))
         scale = np.array([min(fixed.get(i, free.get(i)), cap[i]) for i in range(len(layers))])
@@ -205,8 +208,9 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                   max_iterations: int | None = None, scales: str = "shared") -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``."""
     order = block_order(layers)
-    group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales)
+    # each layer's widest disc, measured once for the start scale and the packed one
     caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
+    group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales, caps)
     group_scale = packed_scales(units, layers, order, canvas, group_scale, group_free,
                                 scale_group, caps)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
