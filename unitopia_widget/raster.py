@@ -187,8 +187,7 @@ class RenderPlan:
                 sprite = sprite.to(device)
             self.parts.append(_Part(torch.as_tensor(idx, device=device), sprite, level, ph, pw,
                                     device, width, height))
-        self.owner = torch.cat([part.idx.repeat_interleave(ph * pw) for part in self.parts
-                                for ph, pw in [(part.ph, part.pw)]])
+        self.owner = torch.cat([part.idx.repeat_interleave(part.ph * part.pw) for part in self.parts])
 
 
 class _Part:

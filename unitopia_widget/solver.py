@@ -110,8 +110,10 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     dev = torch.device(p.device)
     started = time.perf_counter()
     layer_t = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
-    half_w0 = torch.as_tensor(p.half_w * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
-    half_h0 = torch.as_tensor(p.half_h * (1 + 2 * p.margin), device=dev, dtype=torch.float32)
+    # half footprints at scale 1 (margins included): on the host to plan patches, on the device to draw
+    foot_w, foot_h = p.half_w * (1 + 2 * p.margin), p.half_h * (1 + 2 * p.margin)
+    half_w0 = torch.as_tensor(foot_w, device=dev, dtype=torch.float32)
+    half_h0 = torch.as_tensor(foot_h, device=dev, dtype=torch.float32)
     ctl = _Scales(p)
     radius = float(np.mean(np.hypot(p.half_w, p.half_h) * ctl.unit_scale()))
     place = p.placement
@@ -121,7 +123,6 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     optimizer = Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
     planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev)
-    foot_w, foot_h = p.half_w * (1 + 2 * p.margin), p.half_h * (1 + 2 * p.margin)
     n_layers = p.terms.penalty.shape[0]
     readback, plan, sample_layer = Readback(dev), None, None
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
