@@ -50,7 +50,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     for i in order:
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
-        ranks = np.argsort(np.argsort(units.order[idx], kind="stable"), kind="stable")
+        ranks = emission_ranks(units.order[idx])
         container = layer.region
         key = repr(container.to_json())
         if key not in regions:
@@ -123,7 +123,7 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                     packings[key] = Packing(regions[key], STEP * float(np.median(radius[mine])) * scale,
                                             float(radius[mine].max()) * scale)
                 pack = packings[key]
-                ranks = np.argsort(np.argsort(units.order[units.layer == i], kind="stable"))
+                ranks = emission_ranks(units.order[units.layer == i])
                 cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
                 if not pack.place(r, cost, ranks)[1]:
                     return False
@@ -212,6 +212,11 @@ def spot_cost(layer, container, canvas, points: np.ndarray) -> np.ndarray:
         return potential(layer.forces, torch.tensor(points, dtype=torch.float64)).numpy()
     cx, cy = container.centroid(canvas)
     return np.hypot(points[:, 0] - cx, points[:, 1] - cy)
+
+
+def emission_ranks(order: np.ndarray) -> np.ndarray:
+    """``(n,)`` 0..n-1: each unit's place among its layer's units by emission rank ``order (n,)``."""
+    return np.argsort(np.argsort(order, kind="stable"), kind="stable")
 
 
 def footprint_radius(units) -> np.ndarray:
