@@ -156,6 +156,26 @@ def test_thin_marks_are_laid_in_rows_along_the_container_without_overlap():
     assert len(np.unique(center[:, 1])) > 1
 
 
+def test_thin_marks_fill_every_row_of_an_ellipse_evenly_longest_in_the_widest():
+    yy, xx = np.mgrid[0:200, 0:400] + 0.5
+    inside = ((((xx - 200) / 190) ** 2 + ((yy - 100) / 90) ** 2) <= 1).astype(np.float32)
+    region = Region(inside, 1.0)
+    length = lognormal(60, 8, 2) * 12
+    center = rows(region, length, np.full(60, 3.0), region.axis())
+    ys = np.unique(np.round(center[:, 1], 6))
+    gap = float(np.diff(ys).min())
+    assert ys.min() < 10 + gap and ys.max() > 190 - gap                # top and bottom rows in use
+    assert np.allclose(np.diff(ys), gap, atol=1e-6)                   # evenly spaced, none skipped
+    longest = int(np.argmax(length))
+    assert abs(center[longest, 1] - 100) <= gap                       # the longest in a middle row
+    shares = []
+    for y in ys:                                                       # each row about as full
+        row = np.abs(center[:, 1] - y) < 1e-6
+        width = 2 * 190 * math.sqrt(max(1 - ((y - 100) / 90) ** 2, 0))
+        shares.append(length[row].sum() / width)
+    assert max(shares) - min(shares) < 0.5
+
+
 def test_turnable_strands_start_along_a_wide_container():
     df = pd.DataFrame({"length": lognormal(30, 4, 3)})
     strand = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 80">'

@@ -102,18 +102,24 @@ def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
 
 def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> np.ndarray:
     """Centres ``(n, 2)`` for thin marks laid along ``axis`` (radians) in rows across the
-    region, like words in lines: rows spaced so the marks' total length fills the area,
-    each mark, longest first, into the first row span with room for its ``length (n,)``
-    (canvas px) whose depth holds half its ``width (n,)``; marks left over go to the spans
-    with most room left (the optimiser then parts them)."""
+    region, like words in lines: rows evenly spaced over the region's whole breadth so the
+    marks' total length fills the area, each mark, longest first, into the row span with the
+    largest share of its length still free that holds its ``length (n,)`` (canvas px) and
+    whose depth holds half its ``width (n,)``; each span's marks spread evenly along it
+    (a span too full for its marks overfills, and the optimiser then parts them)."""
     e1, e2 = np.array([math.cos(axis), math.sin(axis)]), np.array([-math.sin(axis), math.cos(axis)])
-    x0, y0, x1, y1 = region.bbox
-    mid, half = np.array([(x0 + x1) / 2, (y0 + y1) / 2]), math.hypot(x1 - x0, y1 - y0) / 2
+    ys, xs = np.nonzero(region.depth > 0)
+    pixels = (np.stack([xs, ys], 1) + 0.5) / region.rho
+    mid = pixels.mean(0)
+    along, across = (pixels - mid) @ e1, (pixels - mid) @ e2
+    lo, hi = float(across.min()), float(across.max())
     gap = max(ROWS_FILL * region.area / float(length.sum()), float(width.max()))
-    step = max(float(width.min()) / 2, half / 2000)
-    u = np.arange(-half, half, step)
-    spans = []   # [v, u start, room left]
-    for v in np.arange(-half + gap / 2, half, gap):
+    count = max(1, int(round((hi - lo) / gap)))
+    gap = (hi - lo) / count          # the outer rows half a gap from the edge
+    step = max(float(width.min()) / 2, (hi - lo) / 4000)
+    u = np.arange(float(along.min()), float(along.max()) + step, step)
+    spans = []   # [v, u start, length]
+    for v in lo + gap * (np.arange(count) + 0.5):
         inside = region.depth_at(mid + u[:, None] * e1 + v * e2) >= float(np.median(width)) / 2
         edge = np.diff(np.concatenate([[0], inside.astype(np.int8), [0]]))
         for a, b in zip(np.nonzero(edge == 1)[0], np.nonzero(edge == -1)[0]):
@@ -121,12 +127,19 @@ def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> 
     if not spans:
         raise ValueError("container: no row inside it to lay thin marks along")
     spans = np.array(spans)
-    centers = np.zeros((len(length), 2))
+    room, members = spans[:, 2].copy(), [[] for _ in spans]
     for i in np.argsort(-length, kind="stable"):
-        fit = np.nonzero(spans[:, 2] >= length[i])[0]
-        k = int(fit[0]) if len(fit) else int(np.argmax(spans[:, 2]))
-        v, start, room = spans[k]
-        centers[i] = mid + (start + length[i] / 2) * e1 + v * e2
-        spans[k, 1] += length[i]
-        spans[k, 2] = room - length[i]
+        # the freest span (by share; the longest of equally free ones) that holds the mark
+        share = room / spans[:, 2] + 1e-6 * spans[:, 2] / spans[:, 2].max()
+        fit = room >= length[i]
+        k = int(np.argmax(np.where(fit, share, -np.inf))) if fit.any() else int(np.argmax(share))
+        members[k].append(i)
+        room[k] -= length[i]
+    centers = np.zeros((len(length), 2))
+    for (v, start, _), mine, left in zip(spans, members, room):
+        free = left / max(len(mine), 1)      # the room left, shared out between the marks
+        at = start + free / 2
+        for i in mine:
+            centers[i] = mid + (at + length[i] / 2) * e1 + v * e2
+            at += length[i] + free
     return centers
