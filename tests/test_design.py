@@ -82,8 +82,9 @@ def test_margin_opens_the_gaps_between_equal_circles(margin):
     table = chart.layout()
     xy = table[["x", "y"]].to_numpy()
     touching = table["width"].to_numpy()[0]                  # centre distance of touching circles
-    nearest = cKDTree(xy).query(xy, k=2)[0][:, 1] / ((1 + 2 * margin) * touching)
-    print(f"margin {margin}: nearest centre distance / ((1 + 2m) d): min {nearest.min():.4f}, "
+    # neighbours stand margin x their size apart: centres (1 + m) d apart
+    nearest = cKDTree(xy).query(xy, k=2)[0][:, 1] / ((1 + margin) * touching)
+    print(f"margin {margin}: nearest centre distance / ((1 + m) d): min {nearest.min():.4f}, "
           f"median {np.median(nearest):.4f}")
     assert nearest.min() > 0.97                # the gap is there (0.67 to 0.83 without margins)
     assert np.median(nearest) < 1.06           # and the pile is packed, so the test bites
@@ -95,7 +96,7 @@ def test_margin_column_gives_each_mark_its_own_gap():
                      fill=0.35, forces=[uw.PointForce(400, 440)], iterations=200).layout()
     xy, r = table[["x", "y"]].to_numpy(), table["width"].to_numpy() / 2
     m = df.loc[table["row"], "m"].to_numpy()
-    ratio = np.array([np.hypot(*(xy[i] - xy[j])) / (r[i] * (1 + 2 * m[i]) + r[j] * (1 + 2 * m[j]))
+    ratio = np.array([np.hypot(*(xy[i] - xy[j])) / (r[i] * (1 + m[i]) + r[j] * (1 + m[j]))
                       for i, j in cKDTree(xy).query_pairs(4 * r.max())])
     print(f"margin column: worst centre distance / required {ratio.min():.4f}")
     assert ratio.min() > 0.97

@@ -29,9 +29,16 @@ class Encoded:
     area: np.ndarray      # silhouette area factor (mean 1 over the bound column)
     width: np.ndarray     # extra x stretch (width encoding), 1 when unbound
     height: np.ndarray    # extra y stretch (height encoding), 1 when unbound
-    margin: np.ndarray    # gap around each mark, fraction of its size
+    margin: np.ndarray    # gap to each neighbour, fraction of the mark's size
     order: np.ndarray     # rank in emission order, 0 first
     colors: list          # CSS hex colour per unit; None keeps the mark's own colours
+
+
+def footprint(margin):
+    """Footprint side over drawn side (``(N,)`` or a float) for ``margin``: two marks with
+    margin ``m`` stand ``m`` times their size apart, each keeping half that gap on every side
+    (so the container's edge keeps half of it too)."""
+    return 1.0 + margin
 
 
 def is_css_color(value) -> bool:

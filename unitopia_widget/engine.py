@@ -20,7 +20,7 @@ import pandas as pd
 import torch
 
 from .atlas import SpriteAtlas
-from .encodings import Encoded, check_column, encode, palette_for, unhashable
+from .encodings import Encoded, check_column, encode, footprint, palette_for, unhashable
 from .groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
@@ -161,7 +161,7 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared", caps=Non
         caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
     cap = dict(enumerate(caps))
     fixed, free = {}, {}
-    foot = units.area * (1 + 2 * units.margin) ** 2
+    foot = units.area * footprint(units.margin) ** 2
     for i, layer in enumerate(layers):
         area = layer.region.area(canvas)
         if area <= 0:
@@ -179,7 +179,7 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared", caps=Non
         emitter = layer.emitter
         if getattr(emitter, "mode", None) == "line":
             # a line holds its marks end to end: at most the curve's length of diameters
-            diameters = 2 * np.sqrt(units.area[mine] / math.pi) * (1 + 2 * units.margin[mine])
+            diameters = 2 * np.sqrt(units.area[mine] / math.pi) * footprint(units.margin[mine])
             (fixed if i in fixed else free)[i] = min((fixed if i in fixed else free)[i],
                                                      0.95 * emitter.curve.length / diameters.sum())
     if scales == "independent":
@@ -215,11 +215,11 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                                 scale_group, caps)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
-    foot = np.hypot(units.half_w, units.half_h) * (1 + 2 * units.margin) * unit_scale
+    foot = np.hypot(units.half_w, units.half_h) * footprint(units.margin) * unit_scale
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
-    half = np.stack([units.half_w, units.half_h]) * (1 + 2 * units.margin) * unit_scale
+    half = np.stack([units.half_w, units.half_h]) * footprint(units.margin) * unit_scale
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
@@ -235,7 +235,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         for b in range(a + 1, len(layers)):
             if layers[a].region == layers[b].region and not (blocks[a, b] or blocks[b, a]):
                 blocks[a, b] = blocks[b, a] = 1.0
-    norm = float((units.area * (1 + 2 * units.margin) ** 2 * unit_scale ** 2).sum()) * rho ** 2
+    norm = float((units.area * footprint(units.margin) ** 2 * unit_scale ** 2).sum()) * rho ** 2
     terms = CanvasTerms(
         penalty=torch.stack([f[2] for f in fields]).to(dev),
         outside=torch.stack([f[1] for f in fields]).to(dev),
@@ -280,7 +280,7 @@ def _pyramid(mark, device: str) -> list:
 def _reach(units: Units) -> np.ndarray:
     """``(N,)`` at scale 1: the ink's area-equivalent radius less the margin band around it
     (the room the controller looks for is measured from the footprints)."""
-    band = 2 * units.margin * np.minimum(units.half_w, units.half_h)
+    band = (footprint(units.margin) - 1) * np.minimum(units.half_w, units.half_h)
     return np.maximum(np.sqrt(units.area / math.pi) - band, 0.0)
 
 

@@ -31,6 +31,7 @@ from typing import Callable
 import numpy as np
 import torch
 
+from .encodings import footprint
 from .forces import potential
 from .losses import CanvasLoss, CanvasTerms, shares
 from .optim import Adam
@@ -52,7 +53,7 @@ class Problem:
     layer: np.ndarray              # (N,) layer index per unit
     half_w: np.ndarray             # (N,) half box width at scale 1 (drawn, no margin)
     half_h: np.ndarray             # (N,) half box height at scale 1
-    margin: np.ndarray             # (N,) margin fraction: footprint = box * (1 + 2 margin)
+    margin: np.ndarray             # (N,) margin fraction: footprint = box * footprint(margin)
     placement: Placement           # positions and angles, with their constraints
     terms: CanvasTerms             # containment / fill fields per layer, blocks
     forces: list                   # per layer: list of forces
@@ -111,7 +112,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     started = time.perf_counter()
     layer_t = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
     # half footprints at scale 1 (margins included): on the host to plan patches, on the device to draw
-    foot_w, foot_h = p.half_w * (1 + 2 * p.margin), p.half_h * (1 + 2 * p.margin)
+    foot_w, foot_h = p.half_w * footprint(p.margin), p.half_h * footprint(p.margin)
     half_w0 = torch.as_tensor(foot_w, device=dev, dtype=torch.float32)
     half_h0 = torch.as_tensor(foot_h, device=dev, dtype=torch.float32)
     ctl = _Scales(p)
@@ -322,7 +323,7 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
     scale = ctl.unit_scale()
     reach = p.reach * scale * p.grid.rho
     # the disc a mark's footprint needs at any angle: its long half side, with margin
-    radius = np.maximum(p.half_w, p.half_h) * (1 + 2 * p.margin) * scale * p.grid.rho
+    radius = np.maximum(p.half_w, p.half_h) * footprint(p.margin) * scale * p.grid.rho
     free = place.keep[:, 0].cpu().numpy() > 0
     for track in place.tracks:
         free[track.index.cpu().numpy()] = False

@@ -16,6 +16,7 @@ from scipy.spatial import cKDTree
 
 from .curves import CurveTrack
 from .emitters import CurveEmitter, GridEmitter
+from .encodings import footprint
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
@@ -149,7 +150,7 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
     container = layer.region
     if _lengthwise(layer, units, idx) and key not in packings:
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
-        band = 1 + 2 * units.margin[idx]
+        band = footprint(units.margin[idx])
         return rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
                     region.axis())
     if packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
@@ -224,7 +225,7 @@ def footprint_radius(units) -> np.ndarray:
     area-equivalent and widened for shapes less compact than a disc (a star needs more
     room than its area), margins included."""
     compact = np.minimum(units.fill_fraction / (math.pi / 4), 1.0)
-    return np.sqrt(units.area / math.pi / compact) * (1 + 2 * units.margin)
+    return np.sqrt(units.area / math.pi / compact) * footprint(units.margin)
 
 
 def _angles(layer):

@@ -45,7 +45,7 @@ class UnitoPia(anywidget.AnyWidget):
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``color`` (a column or CSS colour), ``by`` (one layer per value),
-    ``margin`` (fraction of the mark's size, or a column), ``order`` (emission
+    ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
     covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
