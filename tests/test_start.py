@@ -125,6 +125,20 @@ def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
     assert ctl.room(torch.zeros(0), nothing, nothing)[0]                # both empty: room
 
 
+def test_marks_too_few_to_fill_a_closed_container_spread_over_it():
+    # a shared scale held by the fuller bag: the 12 marks of bag b cover a fifth of it
+    df = pd.DataFrame({"bag": ["a"] * 60 + ["b"] * 12, "v": lognormal(72, 20, 2)})
+    chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed")
+    chart.layer("a").set(container=uw.Container.rect(10, 10, 180, 280))
+    chart.layer("b").set(container=uw.Container.rect(210, 10, 180, 280))
+    problem, units, center, radius = start_of(chart)
+    b = units.layer == 1
+    assert (np.pi * radius[b] ** 2).sum() < 0.3 * 180 * 280
+    x, y = center[b].T
+    assert np.ptp(x) > 0.6 * 180 and np.ptp(y) > 0.6 * 280             # from edge to edge
+    assert disc_gaps(center[b], radius[b]).min() > 0                   # none touching
+
+
 def test_an_open_pile_emitted_onto_a_seesaw_legalises_below_one_percent():
     df = pd.DataFrame({"kind": ["work"] * 40 + ["life"] * 40, "hours": lognormal(80, 10, 6)})
     seesaw = uw.Container.polygon([(40, 40), (760, 40), (760, 380), (40, 500)])

@@ -27,6 +27,7 @@ STEP = 0.3            # spot spacing, in median footprint radii
 MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
 ROWS_FILL = 0.75      # rows of thin marks: spaced for this share of the room their length needs
 CHUNK = 4096          # spots scanned at once for the first that fits
+SPARSE = 0.5          # footprint share of a closed container below which marks spread over it
 
 
 def packable(radius: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> bool:
@@ -50,7 +51,8 @@ class Packing:
         pts = hex_points(region.bbox, step)
         depth = region.depth_at(pts)
         keep = depth > 0
-        self.points, self.clear = pts[keep], depth[keep]
+        self.points, self.depth = pts[keep], depth[keep]
+        self.clear = self.depth.copy()
         self.tree = cKDTree(self.points) if len(self.points) else None
         self.reach = reach
 
@@ -65,25 +67,33 @@ class Packing:
                 self.clear[near] = np.minimum(self.clear[near], gap)
 
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
-              largest_first: bool = True):
+              largest_first: bool = True, roomiest: bool = False):
         """Centres ``(n, 2)`` for discs ``radii (n,)``, each at the cheapest spot that holds
         it (``cost (M,)`` per spot, as ordered by ``self.points``), else at the roomiest
         spot; and whether all fitted. ``largest_first``: by decreasing size (``ranks`` break
-        ties), else in ``ranks`` order."""
+        ties), else in ``ranks`` order. ``roomiest``: every disc, of those that hold it, at the
+        spot farthest from the discs placed (the edge counting as a mirror: twice its
+        distance), which spreads marks too few to fill a container evenly over it."""
         if self.tree is None:
             raise ValueError("container: no spot inside it to place marks on")
         by_cost = np.argsort(cost, kind="stable")
         points, clear = self.points[by_cost], self.clear[by_cost]
+        room = 2 * self.depth[by_cost]      # roomiest: twice the edge distance, then the gaps
         tree = cKDTree(points)
         centers, fitted = np.zeros((len(radii), 2)), True
         dead, smallest = 0, float(radii.min())
         for i in np.lexsort((ranks, -radii)) if largest_first else np.argsort(ranks, kind="stable"):
             r = float(radii[i])
             dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
-            k = _first(clear, r, dead, -1)
+            if roomiest:
+                k = int(np.argmax(np.where(clear >= r, room, -np.inf))) if (clear >= r).any() else -1
+            else:
+                k = _first(clear, r, dead, -1)
             if k < 0:
                 k, fitted = int(np.argmax(clear)), False
             centers[i] = points[k]
+            if roomiest:
+                np.minimum(room, np.hypot(*(points - points[k]).T) - r, out=room)
             near = np.asarray(tree.query_ball_point(points[k], r + self.reach), dtype=np.int64)
             clear[near] = np.minimum(clear[near], np.hypot(*(points[near] - points[k]).T) - r)
         self.clear[by_cost] = clear

@@ -20,7 +20,7 @@ from .encodings import footprint
 from .forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
-from .pack import ASPECT, STEP, Packing, packable, rows
+from .pack import ASPECT, SPARSE, STEP, Packing, packable, rows
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -161,7 +161,9 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         # a container to fill: largest first, small ones into the gaps; a pile under forces:
         # in data order (or ``order=``), so sizes mix and order still reads from the pile
         fill = layer.boundary == "closed" and layer.fill is None
-        return packings[key].place(r, cost, ranks, largest_first=fill)[0]
+        # too few to fill it (a shared scale held by a fuller container): spread over it
+        sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
+        return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 
