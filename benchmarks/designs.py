@@ -3,7 +3,7 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads), margins, tall thin marks,
-blocked layers and emitters. Each design is laid out by ``uw.UnitoPia``,
+blocked layers and emitters, turning rectangles and line-drawn sketches. Each design is laid out by ``uw.UnitoPia``,
 exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
@@ -151,10 +151,29 @@ def design_grid():
                 emitter=uw.GridEmitter(direction=90)), [c]
 
 
+def design_rects():
+    rect = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 40 20">'
+                       '<rect width="40" height="20" fill="#e15759"/></svg>')
+    c = uw.Container.polygon(blob(400, 300, 300, 220, 0.05, 12))
+    return dict(df=pd.DataFrame({"v": np.ones(150)}), mark=rect, size="v", rotate=True,
+                container=c, boundary="closed"), [c]
+
+
+def design_suns():
+    t = np.linspace(0, 2 * math.pi, 40)
+    rays = [np.array([[50 + 24 * math.cos(a), 50 + 24 * math.sin(a)],
+                      [50 + 40 * math.cos(a), 50 + 40 * math.sin(a)]])
+            for a in np.linspace(0, 2 * math.pi, 9)[:-1]]
+    sun = uw.Mark.sketch([np.c_[50 + 20 * np.cos(t), 50 + 20 * np.sin(t)]] + rays, width=4)
+    df = pd.DataFrame({"v": np.random.default_rng(0).uniform(1, 5, 80)})
+    c = uw.Container.polygon(blob(400, 300, 330, 240, 0.05, 13))
+    return dict(df=df, mark=sun, size="v", container=c, boundary="closed"), [c]
+
+
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
-           "grid90": design_grid}
+           "grid90": design_grid, "rects": design_rects, "suns": design_suns}
 
 
 def build(name):
