@@ -3,8 +3,8 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads), margins, tall thin marks,
-blocked layers and emitters, turning rectangles and line-drawn sketches. Each design is laid out by ``uw.UnitoPia``,
-exported to SVG, and measured by an independent checker
+blocked layers and emitters, turning rectangles and line-drawn sketches. Each
+design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
 median mark radius from any ink), area-to-value CV; blocked layers report
