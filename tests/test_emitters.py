@@ -310,3 +310,18 @@ def test_curve_emitter_json_round_trip_and_drift():
                                atol=1e-12)
     with pytest.raises(ValueError, match=r"unknown kind 'spiral'"):
         emitter_from_json({"kind": "spiral"})
+
+
+def test_marks_emitted_high_above_the_floor_fall_all_the_way_down_to_it():
+    # the force weakens when the first marks come to rest: the settle must not then end
+    # against the loss of the strong pull, with the rest of the marks still in mid-air
+    df = pd.DataFrame({"v": np.random.default_rng(1).uniform(1, 4, 40)})
+    chart = uw.Chart(df, mark="star", size="v", canvas=(600, 500), boundary="open", fill=0.2,
+                     container=uw.Container.rect(20, 20, 560, 460),
+                     emitter=uw.CurveEmitter([(60, 40), (220, 30), (380, 50), (540, 40)]),
+                     forces=[uw.DirectionalForce(90)])
+    table = chart.layout()
+    bottom = table.y + table.height / 2
+    print(f"lowest mark bottom {bottom.max():.0f}, mean centre y {table.y.mean():.0f}")
+    assert bottom.max() > 470                        # the pile reaches the floor at 480
+    assert table.y.mean() > 300                      # and lies low: no marks left hanging

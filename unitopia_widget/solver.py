@@ -4,8 +4,10 @@ Schedule: a *settle* phase (a strong pull while marks travel, a gentle one
 once they rest; on closed layers the scale grows while the measured overlap
 stays below ``grow_overlap / 2`` and gives way above it once marks rest;
 layers held back for pouring start moving when the stage before them rests;
-ends when the loss stops improving and the marks rest; a loss that rises while marks
-still travel, as they pile up, becomes the new best) and a *polish* phase
+ends when the loss stops improving and the marks rest, a tenth of them still travelling
+keeping it going; a loss that rises while marks still travel, as they pile up, becomes the
+new best, and so does the first loss once they rest, when the force weakens and Adam's
+moments are scaled down with it) and a *polish* phase
 (scale frozen and shrunk by ``polish_shrink``, forces weakened, decaying
 steps) that removes the last overlaps; if a layout still overlaps more than
 ``final_overlap`` or pokes out more than ``final_outside``, the scale gives up
@@ -141,6 +143,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     gain, rounds = 1.0, 0
     # marks placed where the forces pull them start at rest; emitted ones start travelling
     window_start, travelling, last_overlap = place.transforms()[0].detach().clone(), p.travelling, math.inf
+    straggling = False   # some marks (a tenth) still travel, though most rest
     stage = np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage)
     poured, poured_at = 0, 0
     room = np.zeros(ctl.count, dtype=bool)
@@ -217,13 +220,21 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
                 pouring = torch.as_tensor(stage == poured, device=now.device)
-                moved = float((now - window_start).norm(dim=1)[pouring].mean())
+                travel = (now - window_start).norm(dim=1)[pouring]
+                moved = float(travel.mean())
+                straggling = bool(force_layers) and \
+                    float(torch.quantile(travel, 0.9)) > p.settle_motion * radius
+                if travelling and moved <= p.settle_motion * radius and force_layers:
+                    # come to rest: the force weakens, so the loss so far is no reference, and
+                    # Adam's moments, scaled with it, keep marks still in the air falling at pace
+                    best, since_best = math.inf, 0
+                    _rescale_moments(optimizer, place.t, p.force_weight / p.force_travel)
                 travelling = moved > p.settle_motion * radius
                 window_start = now
                 if poured < stage.max() and (not travelling or iteration - poured_at >= p.stage_wait):
                     poured, poured_at, travelling = poured + 1, iteration, True   # pour the next layer
                     place.hold(stage > poured)
-            if (since_best >= p.patience and not travelling) \
+            if (since_best >= p.patience and not travelling and not straggling) \
                     or iteration >= p.max_iterations - p.polish_iterations \
                     - min(p.polish_iterations, p.max_iterations // 10):   # time to legalize
                 phase = "polish"
@@ -344,6 +355,16 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
                             state[key][unit] = 0.0
             moved = moved or bool(moves)
     return moved
+
+
+def _rescale_moments(optimizer, param: torch.Tensor, ratio: float) -> None:
+    """Scale Adam's moments of ``param`` as if its gradients had been ``ratio`` times as large
+    all along: the steps stay as they were, and a gradient that shrinks by ``ratio`` now
+    still moves the units at full pace instead of waiting for the second moment to forget."""
+    state = optimizer.state.get(param)
+    if state:
+        state["exp_avg"].mul_(ratio)
+        state["exp_avg_sq"].mul_(ratio * ratio)
 
 
 def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
