@@ -36,7 +36,8 @@ def render(path: Path, width: int) -> Image.Image:
         img = Image.open(path).convert("RGB")
         return img.resize((width, round(img.height * width / img.width)), Image.LANCZOS)
     svg = path.read_text()
-    w, h = (float(v) for v in re.search(r'viewBox="0 0 ([\d.]+) ([\d.]+)"', svg).groups())
+    # exported charts keep a padding around the canvas: the viewBox starts at -pad, -pad
+    w, h = (float(v) for v in re.search(r'viewBox="[-\d.]+ [-\d.]+ ([\d.]+) ([\d.]+)"', svg).groups())
     png = resvg_py.svg_to_bytes(svg_string=svg, width=2 * width, height=round(2 * width * h / w))
     img = Image.open(io.BytesIO(bytes(png))).convert("RGBA")
     flat = Image.new("RGBA", img.size, "white")
