@@ -39,6 +39,7 @@ from .placement import Placement
 from .raster import Planner, RasterGrid, render_samples
 from .relocate import holes, unit_overlap
 from .room import empty_share
+from .uncross import ink_pairs, turns
 from .transfer import Readback, upload
 
 
@@ -213,6 +214,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 if jammed.any() and iteration < p.max_iterations // 4 and \
                         _relocate(p, ctl, place, optimizer, jammed, values.detach(), index, owner):
                     since_best = min(since_best, p.patience // 2)   # marks moved: settle a little more
+                if _uncross(p, ctl, place, optimizer, values, index, owner):
+                    since_best = min(since_best, p.patience // 2)
                 # settled when the marks stopped travelling over the last window
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
@@ -239,6 +242,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                     # still crowded or poking out: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
+                    _uncross(p, ctl, place, optimizer, values, index, owner)
                     # open scales give way faster: no room is lost, and forces keep piles pressed
                     give = np.where(ctl.free, 1.0, p.legalize_gain_open)
                     ctl.log -= bad * np.maximum(p.legalize_shrink,
@@ -344,6 +348,34 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
                             state[key][unit] = 0.0
             moved = moved or bool(moves)
     return moved
+
+
+def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, index, owner) -> bool:
+    """Turn thin marks whose ink crosses parallel, side by side (``uncross.py``), and forget
+    their Adam momentum. Returns whether any moved."""
+    free = place.turnable & (place.keep[:, 0].cpu().numpy() > 0)
+    for track in place.tracks:
+        free[track.index.cpu().numpy()] = False
+    if not free.any():
+        return False
+    with torch.no_grad():
+        center, tangent = place.centers_and_tangents()
+        if place.orientation is not None:   # marks turned towards a target keep to it
+            free &= place.orientation(center, tangent)[1].cpu().numpy() <= 0
+        pairs, shared = ink_pairs(values, index, owner, len(p.layer))
+        if not len(pairs):
+            return False
+        scale = ctl.unit_scale() * (1 + 2 * p.margin)
+        moves = turns(pairs, shared, center.cpu().numpy().astype(float),
+                      place.theta.cpu().numpy().astype(float), p.half_w * scale, p.half_h * scale, free)
+        for unit, (x, y), angle in moves:
+            place.t[unit, 0], place.t[unit, 1], place.theta[unit] = x, y, angle
+            for param in (place.t, place.theta):
+                state = optimizer.state.get(param, {})
+                for key in ("exp_avg", "exp_avg_sq"):
+                    if key in state:
+                        state[key][unit] = 0.0
+    return bool(moves)
 
 
 def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
