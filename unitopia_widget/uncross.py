@@ -19,7 +19,7 @@ import torch
 
 from .pack import ASPECT
 
-CROSS_ANGLE = math.radians(15.0)   # long axes further apart than this cross (closer: they lie alongside)
+CROSS_ANGLE = math.radians(5.0)    # long axes further apart than this cross (closer: they lie alongside)
 LEAST_INK = 0.5                    # raster px^2 of shared ink (both alphas > 0.5) that make a crossing
 INTERIOR = 0.85                    # the axes meet within this share of both half lengths (nearer an
                                    # end, sliding that mark along resolves the overlap)
