@@ -365,7 +365,7 @@ def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, inde
         pairs, shared = ink_pairs(values, index, owner, len(p.layer))
         if not len(pairs):
             return False
-        scale = ctl.unit_scale() * (1 + 2 * p.margin)
+        scale = ctl.unit_scale() * footprint(p.margin)
         moves = turns(pairs, shared, center.cpu().numpy().astype(float),
                       place.theta.cpu().numpy().astype(float), p.half_w * scale, p.half_h * scale, free)
         for unit, (x, y), angle in moves:
