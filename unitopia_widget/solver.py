@@ -39,7 +39,7 @@ from .placement import Placement
 from .raster import Planner, RasterGrid, render_samples
 from .relocate import holes, unit_overlap
 from .room import empty_share
-from .uncross import ink_pairs, turns
+from .uncross import ink_pairs, thin, turns
 from .transfer import Readback, upload
 
 
@@ -353,15 +353,18 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
 def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, index, owner) -> bool:
     """Turn thin marks whose ink crosses parallel, side by side (``uncross.py``), and forget
     their Adam momentum. Returns whether any moved."""
-    free = place.turnable & (place.keep[:, 0].cpu().numpy() > 0)
+    free = place.turnable & thin(p.half_w, p.half_h)
+    if not free.any():   # no thin mark turns: no readback
+        return False
+    free &= place.keep[:, 0].cpu().numpy() > 0
     for track in place.tracks:
         free[track.index.cpu().numpy()] = False
-    if not free.any():
-        return False
     with torch.no_grad():
         center, tangent = place.centers_and_tangents()
         if place.orientation is not None:   # marks turned towards a target keep to it
             free &= place.orientation(center, tangent)[1].cpu().numpy() <= 0
+        if not free.any():
+            return False
         pairs, shared = ink_pairs(values, index, owner, len(p.layer))
         if not len(pairs):
             return False

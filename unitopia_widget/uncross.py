@@ -49,6 +49,11 @@ def long_axis(angle: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> np.n
     return np.where(half_w >= half_h, angle, angle + math.pi / 2)
 
 
+def thin(half_w: np.ndarray, half_h: np.ndarray) -> np.ndarray:
+    """Bool ``(N,)``: boxes whose long side is over ``ASPECT`` short sides."""
+    return np.maximum(half_w, half_h) > ASPECT * np.minimum(half_w, half_h)
+
+
 def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.ndarray,
           half_w: np.ndarray, half_h: np.ndarray, turnable: np.ndarray):
     """Moves ``[(unit, (x, y), angle), ...]`` that undo the crossings among ``pairs``.
@@ -62,12 +67,12 @@ def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.n
     touch. A mark moves once per call, the most overlapped pairs first.
     """
     long, short = np.maximum(half_w, half_h), np.minimum(half_w, half_h)
-    thin = (long > ASPECT * short) & turnable
+    thin_free = thin(half_w, half_h) & turnable
     axis = long_axis(angle, half_w, half_h)
     moved, out = set(), []
     for k in np.argsort(-shared, kind="stable"):
         a, b = (int(u) for u in pairs[k])
-        if shared[k] < LEAST_INK or not (thin[a] and thin[b]) or a in moved or b in moved:
+        if shared[k] < LEAST_INK or not (thin_free[a] and thin_free[b]) or a in moved or b in moved:
             continue
         gap = (axis[a] - axis[b] + math.pi / 2) % math.pi - math.pi / 2   # (-pi/2, pi/2]
         if abs(gap) <= CROSS_ANGLE or not _interior(center[a], axis[a], long[a], center[b], axis[b], long[b]):
