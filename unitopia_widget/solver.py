@@ -15,6 +15,8 @@ share over ``room_target`` farther than a median mark radius from any mark
 (``room.py``), even while jammed marks keep some overlap, and while their footprints
 poke out a little (more with margins: the band pokes out before the ink). Layers may have
 their own scales (``scale_group``): each group is controlled on its own layers.
+At settle windows and legalising rounds thin marks whose ink crosses turn side by side
+(``uncross.py``): no gradient undoes a crossing.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
 Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
