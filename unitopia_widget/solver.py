@@ -17,6 +17,8 @@ share over ``room_target`` farther than a median mark radius from any mark
 (``room.py``), even while jammed marks keep some overlap, and while their footprints
 poke out a little (more with margins: the band pokes out before the ink). Layers may have
 their own scales (``scale_group``): each group is controlled on its own layers.
+At settle windows and legalising rounds thin marks whose ink crosses turn side by side
+(``uncross.py``): no gradient undoes a crossing.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
 Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
@@ -41,6 +43,7 @@ from .placement import Placement
 from .raster import Planner, RasterGrid, render_samples
 from .relocate import holes, unit_overlap
 from .room import empty_share
+from .uncross import ink_pairs, thin, turns
 from .transfer import Readback, upload
 
 
@@ -216,6 +219,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                 if jammed.any() and iteration < p.max_iterations // 4 and \
                         _relocate(p, ctl, place, optimizer, jammed, values.detach(), index, owner):
                     since_best = min(since_best, p.patience // 2)   # marks moved: settle a little more
+                if _uncross(p, ctl, place, optimizer, values, index, owner):
+                    since_best = min(since_best, p.patience // 2)
                 # settled when the marks stopped travelling over the last window
                 with torch.no_grad():
                     now = place.transforms()[0].detach().clone()
@@ -250,6 +255,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                     # still crowded or poking out: give up a little scale and polish again
                     rounds += 1
                     polish_left = p.polish_iterations // 3
+                    _uncross(p, ctl, place, optimizer, values, index, owner)
                     # open scales give way faster: no room is lost, and forces keep piles pressed
                     give = np.where(ctl.free, 1.0, p.legalize_gain_open)
                     ctl.log -= bad * np.maximum(p.legalize_shrink,
@@ -365,6 +371,37 @@ def _rescale_moments(optimizer, param: torch.Tensor, ratio: float) -> None:
     if state:
         state["exp_avg"].mul_(ratio)
         state["exp_avg_sq"].mul_(ratio * ratio)
+
+
+def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, index, owner) -> bool:
+    """Turn thin marks whose ink crosses parallel, side by side (``uncross.py``), and forget
+    their Adam momentum. Returns whether any moved."""
+    free = place.turnable & thin(p.half_w, p.half_h)
+    if not free.any():   # no thin mark turns: no readback
+        return False
+    free &= place.keep[:, 0].cpu().numpy() > 0
+    for track in place.tracks:
+        free[track.index.cpu().numpy()] = False
+    with torch.no_grad():
+        center, tangent = place.centers_and_tangents()
+        if place.orientation is not None:   # marks turned towards a target keep to it
+            free &= place.orientation(center, tangent)[1].cpu().numpy() <= 0
+        if not free.any():
+            return False
+        pairs, shared = ink_pairs(values, index, owner, len(p.layer))
+        if not len(pairs):
+            return False
+        scale = ctl.unit_scale() * footprint(p.margin)
+        moves = turns(pairs, shared, center.cpu().numpy().astype(float),
+                      place.theta.cpu().numpy().astype(float), p.half_w * scale, p.half_h * scale, free)
+        for unit, (x, y), angle in moves:
+            place.t[unit, 0], place.t[unit, 1], place.theta[unit] = x, y, angle
+            for param in (place.t, place.theta):
+                state = optimizer.state.get(param, {})
+                for key in ("exp_avg", "exp_avg_sq"):
+                    if key in state:
+                        state[key][unit] = 0.0
+    return bool(moves)
 
 
 def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
