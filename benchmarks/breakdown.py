@@ -46,7 +46,7 @@ def child(n: int, sizes: str) -> dict:
     import torch  # noqa: F401
     t["torch"] = time.perf_counter()
     import unitopia_widget as uw
-    from unitopia_widget import engine
+    from unitopia_widget.layout import engine
     t["package"] = time.perf_counter()
     df = pd.DataFrame({"value": discs.values(n, sizes)})
     chart = _chart(uw, df)

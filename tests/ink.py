@@ -10,8 +10,8 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from unitopia_widget.export import png_array
-from unitopia_widget.svgsafe import SVG_NS
+from unitopia_widget.io.export import png_array
+from unitopia_widget.io.svgsafe import SVG_NS
 
 
 def unit_inks(svg: str, canvas, k: int = 2):

@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.containers: constructors, coverage, measures, JSON, errors."""
+"""Tests for unitopia_widget.design.containers: constructors, coverage, measures, JSON, errors."""
 import io
 import math
 
@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from PIL import Image
 
-from unitopia_widget.containers import KINDS, Container
-from unitopia_widget.images import image_data_url
-from unitopia_widget.regions import evenodd_area
+from unitopia_widget.design.containers import KINDS, Container
+from unitopia_widget.io.images import image_data_url
+from unitopia_widget.design.regions import evenodd_area
 
 CANVAS = (800, 500)
 TRIANGLE = [[100.3, 80.7], [650.2, 140.1], [380.9, 460.4]]

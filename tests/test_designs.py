@@ -8,10 +8,10 @@ from scipy import ndimage
 import torch
 
 import unitopia_widget as uw
-from unitopia_widget.placement import Placement
-from unitopia_widget.raster import RasterGrid
-from unitopia_widget.relocate import holes
-from unitopia_widget.room import empty_share
+from unitopia_widget.layout.placement import Placement
+from unitopia_widget.layout.raster import RasterGrid
+from unitopia_widget.layout.relocate import holes
+from unitopia_widget.layout.room import empty_share
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

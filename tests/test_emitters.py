@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.emitters and bezier: grid and curve emitters, stroke fitting."""
+"""Tests for unitopia_widget.design.emitters and bezier: grid and curve emitters, stroke fitting."""
 import math
 
 import numpy as np
@@ -8,10 +8,10 @@ from scipy.spatial import cKDTree
 from scipy.stats import spearmanr
 
 import unitopia_widget as uw
-from unitopia_widget import engine
-from unitopia_widget.bezier import Curve, fit_bezier
-from unitopia_widget.emitters import CurveEmitter, GridEmitter, emitter_from_json
-from unitopia_widget.solver import solve
+from unitopia_widget.layout import engine
+from unitopia_widget.design.bezier import Curve, fit_bezier
+from unitopia_widget.design.emitters import CurveEmitter, GridEmitter, emitter_from_json
+from unitopia_widget.layout.solver import solve
 
 S_CURVE = [[100, 400], [250, 100], [550, 450], [700, 150]]
 TWO_SEGMENTS = [[80, 250], [180, 60], [320, 60], [400, 250], [480, 440], [620, 440], [720, 250]]

@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.encodings: size/width/height factors, colours, order, errors."""
+"""Tests for unitopia_widget.design.encodings: size/width/height factors, colours, order, errors."""
 import warnings
 
 import numpy as np
@@ -7,8 +7,8 @@ import pytest
 from PIL import ImageColor
 
 import unitopia_widget as uw
-from unitopia_widget import engine
-from unitopia_widget.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, encode,
+from unitopia_widget.layout import engine
+from unitopia_widget.design.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, encode,
                                        palette_for, sequential)
 
 

@@ -14,8 +14,8 @@ import torch
 
 import unitopia_widget as uw
 from ink import ink_metrics
-from unitopia_widget.atlas import SpriteAtlas
-from unitopia_widget.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
+from unitopia_widget.layout.atlas import SpriteAtlas
+from unitopia_widget.layout.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
                                     sprite_pyramid)
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -144,11 +144,11 @@ def test_layers_sharing_one_container_collide_both_ways():
     # blocks stay one-way: the blocked layer gives way, the blocking one does not see it
     blocks = torch.zeros(2, 2)
     chart.layer("cherry").set(blocks=["banana"])
-    problem = uw.engine.build_problem(chart._units, chart.layers, chart.canvas, 0, "cpu")
+    problem = uw.layout.engine.build_problem(chart._units, chart.layers, chart.canvas, 0, "cpu")
     blocks[1, 0] = 1
     assert torch.equal(problem.terms.blocks, blocks)
     chart.layer("cherry").set(blocks=[], container=uw.Container.ellipse(201, 150, 180, 130))
-    problem = uw.engine.build_problem(chart._units, chart.layers, chart.canvas, 0, "cpu")
+    problem = uw.layout.engine.build_problem(chart._units, chart.layers, chart.canvas, 0, "cpu")
     assert not problem.terms.blocks.any()                              # different containers: independent
 
 

@@ -26,7 +26,7 @@ from PIL import Image
 import unitopia_widget as uw
 from unitopia_widget import chart as chart_module
 from unitopia_widget.chart import MAX_LAYERS, MAX_UNITS, load_design
-from unitopia_widget.images import image_data_url
+from unitopia_widget.io.images import image_data_url
 
 DATA = Path(__file__).parent / "data" / "marks"
 STATIC = Path(uw.__file__).parent / "static"

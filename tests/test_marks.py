@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from PIL import Image
 
-from unitopia_widget.marks import SHAPES, Mark
+from unitopia_widget.design.marks import SHAPES, Mark
 
 DATA = Path(__file__).parent / "data" / "marks"
 SVG = 'xmlns="http://www.w3.org/2000/svg"'

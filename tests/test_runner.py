@@ -15,8 +15,8 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget import engine
-from unitopia_widget.runner import Runner
+from unitopia_widget.layout import engine
+from unitopia_widget.jupyter.runner import Runner
 
 CIRCLE = uw.Mark.shape("circle")
 SKETCH = uw.Mark.sketch([[[0, 0], [12, 4], [4, 12]], [[8, 8]]], width=2.0, color="#335")

@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.solver (through the headless Chart): small real layouts."""
+"""Tests for unitopia_widget.layout.solver (through the headless Chart): small real layouts."""
 import math
 from types import SimpleNamespace
 
@@ -9,8 +9,8 @@ import torch
 from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
-from unitopia_widget import engine
-from unitopia_widget.solver import Problem, Result, _Scales, solve
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.solver import Problem, Result, _Scales, solve
 
 CX, CY, R = 400.0, 250.0, 200.0
 CIRCLE = uw.Container.ellipse(CX, CY, R, R)

@@ -13,11 +13,11 @@ import pytest
 import torch
 
 import unitopia_widget as uw
-from unitopia_widget import solver
-from unitopia_widget.lattice import Region, fitting_lattice
-from unitopia_widget.optim import Adam
-from unitopia_widget.raster import PATCH_SIDES, SPRITE_SIDE, Planner, RasterGrid, snap_rho
-from unitopia_widget.transfer import Readback
+from unitopia_widget.layout import solver
+from unitopia_widget.layout.lattice import Region, fitting_lattice
+from unitopia_widget.layout.optim import Adam
+from unitopia_widget.layout.raster import PATCH_SIDES, SPRITE_SIDE, Planner, RasterGrid, snap_rho
+from unitopia_widget.layout.transfer import Readback
 
 from test_solver import CIRCLE, CX, CY, R, chart, circle_quality
 

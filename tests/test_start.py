@@ -9,10 +9,10 @@ from scipy.spatial.distance import pdist, squareform
 
 import unitopia_widget as uw
 from ink import ink_metrics
-from unitopia_widget import engine
-from unitopia_widget.lattice import Region
-from unitopia_widget.pack import Packing, packable, rows
-from unitopia_widget.solver import _Scales
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.lattice import Region
+from unitopia_widget.layout.pack import Packing, packable, rows
+from unitopia_widget.layout.solver import _Scales
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

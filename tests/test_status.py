@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.bezier import fit_bezier
+from unitopia_widget.design.bezier import fit_bezier
 from test_runner import assert_frame_is_layout, poll
 
 pytestmark = pytest.mark.usefixtures("one_thread")

@@ -11,8 +11,8 @@ import pytest
 import resvg_py
 from PIL import Image
 
-from unitopia_widget import images, svgsafe
-from unitopia_widget.marks import Mark
+from unitopia_widget.io import images, svgsafe
+from unitopia_widget.design.marks import Mark
 
 DATA = Path(__file__).parent / "data" / "marks"
 SVG = 'xmlns="http://www.w3.org/2000/svg"'

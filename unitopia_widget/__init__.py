@@ -11,11 +11,11 @@ import os
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from .chart import Chart  # noqa: E402
-from .containers import Container  # noqa: E402
-from .emitters import CurveEmitter, GridEmitter  # noqa: E402
-from .forces import DirectionalForce, PointForce  # noqa: E402
-from .marks import Mark  # noqa: E402
-from .scene import Layer  # noqa: E402
+from .design.containers import Container  # noqa: E402
+from .design.emitters import CurveEmitter, GridEmitter  # noqa: E402
+from .design.forces import DirectionalForce, PointForce  # noqa: E402
+from .design.marks import Mark  # noqa: E402
+from .design.scene import Layer  # noqa: E402
 
 __all__ = ["Chart", "Container", "CurveEmitter", "DirectionalForce", "GridEmitter", "Layer",
            "Mark", "PointForce", "UnitoPia"]
@@ -25,6 +25,6 @@ __version__ = "0.1.0"
 def __getattr__(name):
     # the widget pulls in anywidget and ipywidgets: import it on first use only
     if name == "UnitoPia":
-        from .widget import UnitoPia
+        from .jupyter.widget import UnitoPia
         return UnitoPia
     raise AttributeError(f"module 'unitopia_widget' has no attribute {name!r}")

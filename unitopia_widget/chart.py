@@ -16,14 +16,14 @@ from numbers import Integral
 import numpy as np
 import pandas as pd
 
-from . import engine
-from .encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
-from .export import to_png
-from .publish import PageOptions, export_svg
-from .images import image_data_url, load_image
-from .scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
+from .layout import engine
+from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
+from .io.export import to_png
+from .io.publish import PageOptions, export_svg
+from .io.images import image_data_url, load_image
+from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
-from .validate import check_finite, closest
+from .design.validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",

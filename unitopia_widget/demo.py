@@ -9,8 +9,8 @@ import resvg_py
 from PIL import Image
 
 from .chart import Chart
-from .containers import Container
-from .forces import PointForce
+from .design.containers import Container
+from .design.forces import PointForce
 
 JAR = ("M 300 70 L 500 70 L 500 110 C 500 130 480 135 480 150 C 600 190 610 260 610 330 "
        "C 610 430 560 470 400 470 C 240 470 190 430 190 330 C 190 260 200 190 320 150 "

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from xml.sax.saxutils import escape, quoteattr
 
-from .encodings import SEQUENTIAL
+from ..design.encodings import SEQUENTIAL
 from .legend import BAR, CHAR_W, FONT, PAD, TITLE_FONT
 
 TEXT = 'font-family="sans-serif" fill="#222"'

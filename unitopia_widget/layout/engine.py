@@ -20,12 +20,12 @@ import pandas as pd
 import torch
 
 from .atlas import SpriteAtlas
-from .encodings import Encoded, check_column, encode, footprint, palette_for, unhashable
-from .groups import mark_choice
+from ..design.encodings import Encoded, check_column, encode, footprint, palette_for, unhashable
+from ..design.groups import mark_choice
 from .losses import CanvasTerms
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
-from .scene import block_order
+from ..design.scene import block_order
 from .solver import Problem, Result, solve
 from .start import any_angle, orientation_targets, packed_scales, start_positions
 

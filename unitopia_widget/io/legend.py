@@ -18,9 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .encodings import is_css_color, palette_for
-from .groups import sorted_categories
-from .marks import Mark
+from ..design.encodings import is_css_color, palette_for
+from ..design.groups import sorted_categories
+from ..design.marks import Mark
 
 FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)

@@ -23,7 +23,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 from PIL import Image
 
-from . import icons, images, svgsafe
+from . import icons
+from ..io import images, svgsafe
 
 DEFAULT_COLOR = "#4e79a7"
 FILL_FRACTION_SIDE = 512

@@ -16,7 +16,7 @@ import numpy as np
 from PIL import Image
 
 from . import regions
-from .images import check_pixels, image_data_url, load_image
+from ..io.images import check_pixels, image_data_url, load_image
 from .validate import check_finite, check_positive
 
 KINDS = ("canvas", "rect", "ellipse", "polygon", "path", "image")

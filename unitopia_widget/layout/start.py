@@ -15,9 +15,9 @@ import torch
 from scipy.spatial import cKDTree
 
 from .curves import CurveTrack
-from .emitters import CurveEmitter, GridEmitter
-from .encodings import footprint
-from .forces import potential
+from ..design.emitters import CurveEmitter, GridEmitter
+from ..design.encodings import footprint
+from ..design.forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import ASPECT, SPARSE, STEP, Packing, packable, rows

@@ -35,8 +35,8 @@ from typing import Callable
 import numpy as np
 import torch
 
-from .encodings import footprint
-from .forces import potential
+from ..design.encodings import footprint
+from ..design.forces import potential
 from .losses import CanvasLoss, CanvasTerms, shares
 from .optim import Adam
 from .placement import Placement

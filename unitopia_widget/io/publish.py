@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import engine, legend as legend_mod, legend_draw
+from ..layout import engine
+from . import legend as legend_mod, legend_draw
 from .export import to_svg
 from .outline import outlines
 from .svgsafe import sanitize_svg

@@ -18,7 +18,7 @@ import base64
 import re
 import uuid
 
-from .export import to_png
+from ..io.export import to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
 HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "
@@ -57,7 +57,7 @@ class StaticDisplay:
         if svg is None:
             return {"text/plain": plain,
                     "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static"><pre>{plain}</pre></div>'}
-        from .chart import svg_size
+        from ..chart import svg_size
         png = base64.b64encode(to_png(svg, svg_size(svg), 1.0)).decode()
         return {"text/plain": plain, "image/svg+xml": svg, "image/png": png,
                 "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static">{svg}</div>'}

@@ -15,15 +15,15 @@ import numpy as np
 import pandas as pd
 import traitlets as t
 
-from . import icons
-from .chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
-from .encodings import rgba
-from .export import to_png
+from ..design import icons
+from ..chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
+from ..design.encodings import rgba
+from ..io.export import to_png
 from .notebook import StaticDisplay
-from .publish import legend_image
+from ..io.publish import legend_image
 from .runner import Runner
 
-STATIC = pathlib.Path(__file__).parent / "static"
+STATIC = pathlib.Path(__file__).parent.parent / "static"
 
 
 class _SyncedChart(Chart):

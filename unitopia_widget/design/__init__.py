@@ -1,0 +1,1 @@
+"""The design model: marks, containers, emitters, forces, layers and encodings."""

@@ -1,0 +1,1 @@
+"""Input and output: safe SVG and images in, SVG and PNG pages out."""

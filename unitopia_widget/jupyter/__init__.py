@@ -1,0 +1,1 @@
+"""The Jupyter widget: traitlets, the background runner, the saved output."""

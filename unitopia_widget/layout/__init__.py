@@ -1,0 +1,1 @@
+"""The layout engine: raster, losses, solver, placement and the start."""
