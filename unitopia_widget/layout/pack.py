@@ -30,13 +30,17 @@ CHUNK = 4096          # spots scanned at once for the first that fits
 SPARSE = 0.5          # footprint share of a closed container below which marks spread over it
 
 
+def thin(half_w: np.ndarray, half_h: np.ndarray) -> np.ndarray:
+    """Bool ``(N,)``: boxes (half sides ``(N,)``) whose long side is over ``ASPECT`` short sides."""
+    return np.maximum(half_w, half_h) > ASPECT * np.minimum(half_w, half_h)
+
+
 def packable(radius: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> bool:
     """Whether a layer's marks get a size-aware start: footprint radii ``(n,)`` spread,
-    and every box (half sides ``(n,)``) compact enough for its disc to stand for it
-    (a tall, thin strand's disc would let neighbours cross it)."""
-    aspect = np.maximum(half_w, half_h) / np.maximum(np.minimum(half_w, half_h), 1e-12)
+    and no box (half sides ``(n,)``) thin, so that its disc stands for it (a tall, thin
+    strand's disc would let neighbours cross it)."""
     return (len(radius) > 1 and float(radius.max()) > SPREAD * float(radius.min())
-            and float(aspect.max()) <= ASPECT)
+            and not thin(half_w, half_h).any())
 
 
 class Packing:

@@ -43,8 +43,9 @@ from .placement import Placement
 from .raster import Planner, RasterGrid, render_samples
 from .relocate import holes, unit_overlap
 from .room import empty_share
-from .uncross import ink_pairs, thin, turns
+from .pack import thin
 from .transfer import Readback, upload
+from .uncross import ink_pairs, turns
 
 
 @dataclass

@@ -20,7 +20,7 @@ from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
 from .lattice import Region, fitting_lattice, grid_spacing
-from .pack import ASPECT, SPARSE, STEP, Packing, packable, rows
+from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
@@ -170,10 +170,8 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
 def _lengthwise(layer, units, idx) -> bool:
     """Whether a layer's marks start laid along its container: turnable, no orientation
     asked for, no emitter, and every box thin (long side over ``ASPECT`` short sides)."""
-    long, short = np.maximum(units.half_w[idx], units.half_h[idx]), np.minimum(
-        units.half_w[idx], units.half_h[idx])
     return bool(layer.rotate and layer.orientation is None and layer.emitter is None
-                and (long > ASPECT * short).all())
+                and thin(units.half_w[idx], units.half_h[idx]).all())
 
 
 def _room_ahead(region: Region, center: np.ndarray, direction: np.ndarray, r: np.ndarray):

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import torch
 
-from .pack import ASPECT
+from .pack import thin
 
 CROSS_ANGLE = math.radians(5.0)    # long axes further apart than this cross (closer: they lie alongside)
 LEAST_INK = 0.5                    # raster px^2 of shared ink (both alphas > 0.5) that make a crossing
@@ -47,11 +47,6 @@ def ink_pairs(values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor, n_
 def long_axis(angle: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> np.ndarray:
     """``(N,)`` direction (radians, mod pi) of each box's long side at ``angle (N,)`` radians."""
     return np.where(half_w >= half_h, angle, angle + math.pi / 2)
-
-
-def thin(half_w: np.ndarray, half_h: np.ndarray) -> np.ndarray:
-    """Bool ``(N,)``: boxes whose long side is over ``ASPECT`` short sides."""
-    return np.maximum(half_w, half_h) > ASPECT * np.minimum(half_w, half_h)
 
 
 def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.ndarray,
