@@ -214,11 +214,13 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             if grow.any():
                 since_best = 0
             if iteration % p.patience == 0:
-                room = ctl.room(values.detach(), index, layer_t[owner])
+                # the ink raster, on the host, once a window (only where some scale fills)
+                cover = _coverage(p, values.detach(), index) if ctl.measures_room else None
+                room = ctl.room(cover)
                 # jammed: room left, yet the overlap keeps the scale from growing
                 jammed = room & (overlap_g > 0.5 * p.grow_overlap)
                 if jammed.any() and iteration < p.max_iterations // 4 and \
-                        _relocate(p, ctl, place, optimizer, jammed, values.detach(), index, owner):
+                        _relocate(p, ctl, place, optimizer, jammed, cover, values.detach(), index, owner):
                     since_best = min(since_best, p.patience // 2)   # marks moved: settle a little more
                 if _uncross(p, ctl, place, optimizer, values, index, owner):
                     since_best = min(since_best, p.patience // 2)
@@ -294,6 +296,11 @@ class _Scales:
                            else 0.0 for g in range(self.count)])
         self.grow_outside = p.grow_overlap * np.minimum(0.4 + 6.0 * margin, 1.0)
 
+    @property
+    def measures_room(self) -> bool:
+        """Whether the room of closed containers is measured (some scale fills them)."""
+        return self.p.reach is not None and bool(self.free.any())
+
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
         return np.exp(self.log)[self.unit_group]
@@ -305,15 +312,13 @@ class _Scales:
         drawn = np.maximum(per[2], 1e-6)
         return per[0] / drawn, per[1] / drawn
 
-    def room(self, values, index, owner_layer) -> np.ndarray:
+    def room(self, cover: np.ndarray | None) -> np.ndarray:
         """Bool ``(G,)``: controlled groups whose closed containers all still have room
-        (a shared scale that grows for an empty container overfills a full one)."""
+        (a shared scale that grows for an empty container overfills a full one), from the
+        ink raster ``cover (H, W)`` (``_coverage``; None where ``measures_room`` is False)."""
         p, out = self.p, np.zeros(self.count, dtype=bool)
-        if p.reach is None or not self.free.any():
+        if not self.measures_room:
             return out
-        size = p.terms.penalty.shape[1]
-        cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
-        cover = cover.cpu().numpy().reshape(p.grid.shape)
         inside = p.terms.inside_host
         scale = self.unit_scale()
         for g in np.nonzero(self.free)[0]:
@@ -329,23 +334,42 @@ class _Scales:
         return out
 
 
-def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.ndarray,
-              values, index, owner) -> bool:
-    """Move the most overlapped free marks of roomy closed layers into their holes
-    (``relocate.py``) and forget their Adam momentum. Returns whether any moved."""
+def _coverage(p: Problem, values, index) -> np.ndarray:
+    """``(H, W)`` host copy of the summed sample alphas ``values (M,)`` at raster ``index (M,)``."""
     size = p.terms.penalty.shape[1]
-    overlap = unit_overlap(values, index, owner, len(p.layer), size)
     cover = torch.zeros(size, dtype=values.dtype, device=values.device).index_add_(0, index, values)
-    cover = cover.cpu().numpy().reshape(p.grid.shape)
+    return cover.cpu().numpy().reshape(p.grid.shape)
+
+
+def _movable(place: Placement) -> np.ndarray:
+    """Bool ``(N,)``: units the solver may move by hand: released, and not on a curve track."""
+    free = place.keep[:, 0].cpu().numpy() > 0
+    for track in place.tracks:
+        free[track.index.cpu().numpy()] = False
+    return free
+
+
+def _forget(optimizer, params, units: list) -> None:
+    """Clear Adam's moments of ``units`` in each of ``params``: they were moved by hand."""
+    for param in params:
+        state = optimizer.state.get(param, {})
+        for key in ("exp_avg", "exp_avg_sq"):
+            if key in state:
+                state[key][units] = 0.0
+
+
+def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.ndarray,
+              cover: np.ndarray, values, index, owner) -> bool:
+    """Move the most overlapped free marks of roomy closed layers into their holes
+    (``relocate.py``; ``cover (H, W)`` the ink raster) and forget their Adam momentum.
+    Returns whether any moved."""
+    overlap = unit_overlap(values, index, owner, len(p.layer), p.terms.penalty.shape[1])
     inside = p.terms.inside_host
     scale = ctl.unit_scale()
     reach = p.reach * scale * p.grid.rho
     # the disc a mark's footprint needs at any angle: its long half side, with margin
     radius = np.maximum(p.half_w, p.half_h) * footprint(p.margin) * scale * p.grid.rho
-    free = place.keep[:, 0].cpu().numpy() > 0
-    for track in place.tracks:
-        free[track.index.cpu().numpy()] = False
-    state, moved = optimizer.state.get(place.t, {}), False
+    free, moved = _movable(place), False
     for g in np.nonzero(room)[0]:
         for layer in np.nonzero(ctl.group == g)[0]:
             mine = p.layer == layer
@@ -357,10 +381,9 @@ def _relocate(p: Problem, ctl: _Scales, place: Placement, optimizer, room: np.nd
             with torch.no_grad():
                 for unit, (x, y) in moves:
                     place.t[unit, 0], place.t[unit, 1] = x, y
-                    for key in ("exp_avg", "exp_avg_sq"):
-                        if key in state:
-                            state[key][unit] = 0.0
-            moved = moved or bool(moves)
+            if moves:
+                _forget(optimizer, (place.t,), [unit for unit, _ in moves])
+                moved = True
     return moved
 
 
@@ -380,9 +403,7 @@ def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, inde
     free = place.turnable & thin(p.half_w, p.half_h)
     if not free.any():   # no thin mark turns: no readback
         return False
-    free &= place.keep[:, 0].cpu().numpy() > 0
-    for track in place.tracks:
-        free[track.index.cpu().numpy()] = False
+    free &= _movable(place)
     with torch.no_grad():
         center, tangent = place.centers_and_tangents()
         if place.orientation is not None:   # marks turned towards a target keep to it
@@ -397,11 +418,8 @@ def _uncross(p: Problem, ctl: _Scales, place: Placement, optimizer, values, inde
                       place.theta.cpu().numpy().astype(float), p.half_w * scale, p.half_h * scale, free)
         for unit, (x, y), angle in moves:
             place.t[unit, 0], place.t[unit, 1], place.theta[unit] = x, y, angle
-            for param in (place.t, place.theta):
-                state = optimizer.state.get(param, {})
-                for key in ("exp_avg", "exp_avg_sq"):
-                    if key in state:
-                        state[key][unit] = 0.0
+    if moves:
+        _forget(optimizer, (place.t, place.theta), [unit for unit, _, _ in moves])
     return bool(moves)
 
 
