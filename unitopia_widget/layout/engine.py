@@ -215,11 +215,12 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                                 scale_group, caps)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
-    foot = np.hypot(units.half_w, units.half_h) * footprint(units.margin) * unit_scale
+    band = footprint(units.margin)
+    foot = np.hypot(units.half_w, units.half_h) * band * unit_scale
     r_mean = float(np.mean(foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
-    half = np.stack([units.half_w, units.half_h]) * footprint(units.margin) * unit_scale
+    half = np.stack([units.half_w, units.half_h]) * band * unit_scale
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
@@ -235,7 +236,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         for b in range(a + 1, len(layers)):
             if layers[a].region == layers[b].region and not (blocks[a, b] or blocks[b, a]):
                 blocks[a, b] = blocks[b, a] = 1.0
-    norm = float((units.area * footprint(units.margin) ** 2 * unit_scale ** 2).sum()) * rho ** 2
+    norm = float((units.area * band ** 2 * unit_scale ** 2).sum()) * rho ** 2
     terms = CanvasTerms(
         penalty=torch.stack([f[2] for f in fields]).to(dev),
         outside=torch.stack([f[1] for f in fields]).to(dev),

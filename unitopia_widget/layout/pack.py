@@ -90,7 +90,8 @@ class Packing:
             r = float(radii[i])
             dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
             if roomiest:
-                k = int(np.argmax(np.where(clear >= r, room, -np.inf))) if (clear >= r).any() else -1
+                holds = clear >= r
+                k = int(np.argmax(np.where(holds, room, -np.inf))) if holds.any() else -1
             else:
                 k = _first(clear, r, dead, -1)
             if k < 0:
@@ -142,9 +143,10 @@ def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> 
         raise ValueError("container: no row inside it to lay thin marks along")
     spans = np.array(spans)
     room, members = spans[:, 2].copy(), [[] for _ in spans]
+    longer = 1e-6 * spans[:, 2] / spans[:, 2].max()   # breaks ties towards the longer span
     for i in np.argsort(-length, kind="stable"):
         # the freest span (by share; the longest of equally free ones) that holds the mark
-        share = room / spans[:, 2] + 1e-6 * spans[:, 2] / spans[:, 2].max()
+        share = room / spans[:, 2] + longer
         fit = room >= length[i]
         k = int(np.argmax(np.where(fit, share, -np.inf))) if fit.any() else int(np.argmax(share))
         members[k].append(i)
