@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from unitopia_widget.io.export import png_array
+from unitopia_widget.output.export import png_array
 from unitopia_widget.io.svgsafe import SVG_NS
 
 

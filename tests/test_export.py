@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.io.export: SVG structure, recolouring, PNG, and the exported layout's
+"""Tests for unitopia_widget.output.export: SVG structure, recolouring, PNG, and the exported layout's
 quality measured independently from the SVG itself."""
 import io
 import math
@@ -13,7 +13,7 @@ from svgpathtools import parse_path
 
 import unitopia_widget as uw
 from unitopia_widget.design.encodings import CATEGORICAL
-from unitopia_widget.io.export import png_array
+from unitopia_widget.output.export import png_array
 
 NS = {"svg": "http://www.w3.org/2000/svg"}
 SVG = "{http://www.w3.org/2000/svg}"

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.io.legend import round_values
+from unitopia_widget.output.legend import round_values
 
 SVG = "{http://www.w3.org/2000/svg}"
 pytestmark = pytest.mark.usefixtures("one_thread")

@@ -18,8 +18,8 @@ import pandas as pd
 
 from .layout import engine
 from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
-from .io.export import to_png
-from .io.publish import PageOptions, export_svg
+from .output.export import to_png
+from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)

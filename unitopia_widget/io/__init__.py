@@ -1,1 +1,1 @@
-"""Input and output: safe SVG and images in, SVG and PNG pages out."""
+"""Safe input: SVG sanitising and image readers."""

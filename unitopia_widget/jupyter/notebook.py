@@ -18,7 +18,7 @@ import base64
 import re
 import uuid
 
-from ..io.export import to_png
+from ..output.export import to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
 HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "

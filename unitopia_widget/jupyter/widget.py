@@ -18,9 +18,9 @@ import traitlets as t
 from ..design import icons
 from ..chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
 from ..design.encodings import rgba
-from ..io.export import to_png
+from ..output.export import to_png
 from .notebook import StaticDisplay
-from ..io.publish import legend_image
+from ..output.publish import legend_image
 from .runner import Runner
 
 STATIC = pathlib.Path(__file__).parent.parent / "static"

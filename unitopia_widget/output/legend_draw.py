@@ -99,7 +99,7 @@ def render(sections, x: float, y: float, across: bool = False) -> tuple[str, flo
 
 def standalone(sections) -> tuple[str, float, float]:
     """The legend alone as an SVG document (the widget's ``legend`` trait)."""
-    from .svgsafe import SVG_NS
+    from ..io.svgsafe import SVG_NS
     _, w, h = render(sections, 0, 0)
     w, h = max(w, 1.0) + 2, max(h, 1.0) + 2
     block, _, _ = render(sections, 1, 1)

@@ -13,7 +13,7 @@ from ..layout import engine
 from . import legend as legend_mod, legend_draw
 from .export import to_svg
 from .outline import outlines
-from .svgsafe import sanitize_svg
+from ..io.svgsafe import sanitize_svg
 from .page import CAPTION_CHARS, TITLE_CHARS, check_position, check_text, compose
 
 

@@ -16,7 +16,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 from PIL import Image
 
-from .svgsafe import SVG_NS
+from ..io.svgsafe import SVG_NS
 
 ICON_CREDIT = ("<!-- Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0, "
                "https://fontawesome.com/license/free -->")

@@ -1,0 +1,1 @@
+"""Output: the exported SVG and PNG page (marks, legend, title, outlines), built from a layout."""
