@@ -15,6 +15,7 @@ import numpy as np
 import torch
 
 from .moves import relocate, rescale_moments, uncross
+from .optim import Adam
 from .placement import Placement
 from .scales import Scales, coverage
 
@@ -25,10 +26,10 @@ class State:
     the schedule's counters, and this iteration's readback (``values``, ``index``, ``owner``:
     the rendered samples; ``overlap_g``, ``outside_g``: shares ``(G,)`` per scale group)."""
 
-    p: object
+    p: object                      # the solver's Problem
     ctl: Scales
     place: Placement
-    optimizer: object
+    optimizer: Adam
     radius: float                  # mean mark radius at the start, canvas px
     force_layers: list             # (unit indices, forces) of the layers with forces
     stage: np.ndarray              # (N,) pouring stage per unit
@@ -56,7 +57,7 @@ class State:
     values: torch.Tensor | None = None
     index: torch.Tensor | None = None
     owner: torch.Tensor | None = None
-    record: dict = field(default_factory=dict)   # rule name -> iterations it acted on
+    record: dict = field(default_factory=dict)   # "phase", "phase.rule" -> iterations acted on
 
     def settle_more(self) -> None:
         """Marks were moved by hand: settle a little longer before polishing."""
@@ -74,7 +75,8 @@ class Rule:
 class BestLoss(Rule):
     """Every settle iteration: track the best loss and the iterations since it. A loss that
     rises while marks travel (they pile up: emitters, pouring) becomes the new best, since
-    the best from before they met is no reference for whether the pile has settled."""
+    the best from before they met is no reference for whether the pile has settled.
+    Needed by emitted and poured designs."""
 
     name = "best-loss"
 
@@ -89,7 +91,8 @@ class BestLoss(Rule):
 class StepSize(Rule):
     """Every settle iteration: big translation steps while marks travel freely, small ones
     once they press on each other; while marks travel only crowding that gets worse slows
-    them (an emitter's first pile-up resolving is no reason to slow down)."""
+    them (an emitter's first pile-up resolving is no reason to slow down). Needed by
+    emitters: marks that start far from where they rest."""
 
     name = "step-size"
 
@@ -108,7 +111,9 @@ class FillScale(Rule):
     grow while the measured overlap stays below ``grow_overlap / 2``, or while the container
     has room (even as jammed marks keep some overlap, and while footprints poke out a
     little); give way above it once marks rest, or as they leave the container. Poking out is
-    worse than touching: room never grows a scale past a mark outside. Acts when a scale moved."""
+    worse than touching: room never grows a scale past a mark outside. Needed by closed
+    boundaries (the scale is controlled, not learned: a gradient balance between fill and
+    overlap settles at a few percent of overlap with spiky marks). Acts when a scale moved."""
 
     name = "fill-scale"
 
@@ -223,7 +228,7 @@ class Pour(Rule):
 class StartPolish(Rule):
     """End the settle phase when the loss stopped improving for ``patience`` iterations and
     the marks rest, or when only the polishing iterations are left: controlled scales shrink
-    by ``polish_shrink`` and freeze."""
+    by ``polish_shrink`` and freeze. Every design ends its settle here."""
 
     name = "start-polish"
 
@@ -239,7 +244,8 @@ class StartPolish(Rule):
 
 
 class Decay(Rule):
-    """Every polish iteration: the steps decay linearly to nothing over the polish."""
+    """Every polish iteration: the steps decay linearly to nothing over the polish, so the
+    last overlaps go without new ones made (every design)."""
 
     name = "decay"
     phase = "polish"
