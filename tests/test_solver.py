@@ -10,7 +10,8 @@ from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.solver import Problem, Result, _Scales, solve
+from unitopia_widget.layout.scales import Scales
+from unitopia_widget.layout.solver import Problem, Result, solve
 
 CX, CY, R = 400.0, 250.0, 200.0
 CIRCLE = uw.Container.ellipse(CX, CY, R, R)
@@ -66,6 +67,18 @@ def test_closed_layout_has_no_overlap_and_stays_inside(closed_layout):
     assert outside < 0.005, outside
     assert density > 0.6, density            # a closed boundary fills the container
     assert c.result.stats["overlap"] < 0.01
+
+
+def test_the_result_records_the_phases_and_rules_that_ran(closed_layout):
+    c, _ = closed_layout
+    phases, iterations = c.result.phases, c.result.iterations
+    assert phases["settle"] + phases["polish"] == iterations
+    assert phases["settle.best-loss"] == phases["settle.step-size"] == phases["settle"]
+    assert phases["polish.decay"] == phases["polish"]
+    assert phases["settle.start-polish"] == 1
+    assert phases["settle.fill-scale"] > 0          # the scale grew into the closed container
+    assert 0 < phases["settle.measure-room"] <= phases["settle"] // 12 + 1   # once a window
+    assert "settle.pour" not in phases               # nothing held back: no stage poured
 
 
 def test_open_layout_keeps_the_requested_fill_and_no_overlap():
@@ -213,4 +226,4 @@ def test_room_lets_margins_poke_out_before_the_scale_stops_growing():
                         group_scale=np.array([1.0, 1.0]), group_free=np.array([True, True]),
                         layer=np.array([0, 0, 1, 1]), margin=np.array([0.0, 0.0, 0.1, 0.1]),
                         grow_overlap=0.01)
-    np.testing.assert_allclose(_Scales(p).grow_outside, [0.004, 0.01])
+    np.testing.assert_allclose(Scales(p).grow_outside, [0.004, 0.01])

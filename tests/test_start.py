@@ -12,7 +12,7 @@ from ink import ink_metrics
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.lattice import Region
 from unitopia_widget.layout.pack import Packing, packable, rows
-from unitopia_widget.layout.solver import _Scales, _coverage
+from unitopia_widget.layout.scales import Scales, coverage
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -115,13 +115,13 @@ def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
     chart.layer("b").set(container=uw.Container.rect(210, 10, 180, 280))
     units = engine.bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
-    ctl = _Scales(problem)
+    ctl = Scales(problem)
     inside = problem.terms.inside.numpy()
     full_a = torch.as_tensor(np.nonzero(inside[0] >= 0.5)[0])      # ink over all of bag a
     ink = torch.ones(len(full_a))
-    assert not ctl.room(_coverage(problem, ink, full_a))[0]             # a is full: no growth
+    assert not ctl.room(coverage(problem, ink, full_a))[0]             # a is full: no growth
     nothing = torch.zeros(0, dtype=torch.long)
-    assert ctl.room(_coverage(problem, torch.zeros(0), nothing))[0]     # both empty: room
+    assert ctl.room(coverage(problem, torch.zeros(0), nothing))[0]     # both empty: room
 
 
 def test_marks_too_few_to_fill_a_closed_container_spread_over_it():

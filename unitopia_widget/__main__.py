@@ -2,7 +2,9 @@
 
 ``demo`` lays out the built-in example (stars settling in a jar, sized by a
 small made-up dataset of task durations) and writes it as SVG, PNG or design
-JSON, with a progress bar on stderr.
+JSON, with a progress bar on stderr. ``explain design.json --data rows.csv`` lays
+out a saved design on its data and prints which phases and rules of the solver's
+schedule ran, with the iterations each acted on.
 """
 from __future__ import annotations
 
@@ -10,7 +12,11 @@ import argparse
 import sys
 import time
 
+import pandas as pd
+
+from .chart import Chart, load_design
 from .demo import demo_chart
+from .layout.schedule import SCHEDULE
 
 
 def _bar(stream):
@@ -38,7 +44,12 @@ def main(argv=None) -> int:
     demo = sub.add_parser("demo", help="render the built-in example (stars in a jar)")
     demo.add_argument("-o", "--output", default="demo.svg", help="output .svg, .png or .json")
     demo.add_argument("--seed", type=int, default=0)
+    explain = sub.add_parser("explain", help="lay out a design and print the schedule it ran")
+    explain.add_argument("design", help="a design .json (saved by chart.save)")
+    explain.add_argument("--data", required=True, help="the chart's rows, a .csv with a header")
     args = parser.parse_args(argv)
+    if args.command == "explain":
+        return _explain(args.design, args.data)
     chart = demo_chart(seed=args.seed)
     chart.layout(on_progress=_bar(sys.stderr))
     sys.stderr.write("\n")
@@ -46,6 +57,25 @@ def main(argv=None) -> int:
     r = chart.result
     print(f"wrote {args.output}: {len(chart.placements)} marks, {r.iterations} iterations, "
           f"{r.seconds:.1f} s, overlap {100 * r.stats['overlap']:.2f}%")
+    return 0
+
+
+def _explain(design_path: str, data_path: str) -> int:
+    """Lay out the design at ``design_path`` on the rows of ``data_path``; print the
+    schedule: each phase's iterations, then each of its rules' (0: it never acted)."""
+    design = load_design(design_path)
+    chart = Chart(pd.read_csv(data_path), canvas=design.get("canvas", (800, 500)))
+    chart.apply_design(design)
+    chart.layout()
+    r = chart.result
+    print(f"{design_path}: {len(chart.placements)} marks, {r.iterations} iterations, "
+          f"{r.seconds:.1f} s, overlap {100 * r.stats['overlap']:.2f}%")
+    for phase in ("settle", "polish"):
+        print(f"{phase:<14}{r.phases.get(phase, 0):6d}")
+        for rule in SCHEDULE:
+            if rule.phase == phase:
+                every = "  (every patience window)" if rule.window else ""
+                print(f"  {rule.name:<12}{r.phases.get(f'{phase}.{rule.name}', 0):6d}{every}")
     return 0
 
 
