@@ -3,8 +3,8 @@
 Used by the mark-group tests and benchmarks/groups.py. A pixel (at ``k`` x the
 canvas) is a unit's ink where its alpha > 0.5; overlap is the ink drawn over
 other ink, outside the ink beyond an ellipse, both as shares of all ink. A unit's
-silhouette is its ink with enclosed holes filled; ``nested`` is the largest share of
-any unit's ink that lies inside other units' silhouettes.
+silhouette is its ink with enclosed holes filled; ``nested`` is the share of the ink
+inside other units' silhouettes, ``nested_max`` the largest such share of one unit's ink.
 """
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def unit_inks(svg: str, canvas, k: int = 2):
 
 
 def ink_metrics(svg: str, canvas, ellipse=None, k: int = 2) -> dict:
-    """``overlap``, ``outside`` (shares of the ink), ``nested`` (see above), ``areas`` and
+    """``overlap``, ``outside`` (shares of the ink), ``nested``, ``nested_max`` (see above), ``areas`` and
     ``silhouettes`` {data-row: ink / silhouette px at k x}."""
     w, h = int(round(canvas[0])), int(round(canvas[1]))
     count = np.zeros((h * k, w * k), np.int32)
@@ -43,11 +43,12 @@ def ink_metrics(svg: str, canvas, ellipse=None, k: int = 2) -> dict:
         solid += filled
         areas[row], silhouettes[row] = float(ink.sum()), float(filled.sum())
         inks[row] = (ink, filled)
-    nested = max((float((ink & (solid - filled > 0)).sum()) / max(float(ink.sum()), 1.0)
-                  for ink, filled in inks.values()), default=0.0)
+    within = [(float((ink & (solid - filled > 0)).sum()), max(float(ink.sum()), 1.0))
+              for ink, filled in inks.values()]
     total = max(float(count.sum()), 1.0)
     out = {"overlap": float(np.maximum(count - 1, 0).sum()) / total, "areas": areas,
-           "silhouettes": silhouettes, "nested": nested, "outside": 0.0}
+           "silhouettes": silhouettes, "nested": sum(a for a, _ in within) / total,
+           "nested_max": max((a / b for a, b in within), default=0.0), "outside": 0.0}
     if ellipse is not None:
         y, x = (np.mgrid[0:h * k, 0:w * k] + 0.5) / k
         cx, cy, rx, ry = ellipse
