@@ -276,7 +276,9 @@ def _pyramid(mark, device: str) -> list:
     """The sprite pyramid of ``mark`` on ``device``, made once per process (marks are
     immutable and the solver only reads it): a second layout skips the render."""
     alpha = mark.silhouette(SPRITE_SIDE)
-    return sprite_pyramid(alpha, device, keep_thin=is_thin(alpha))
+    # a sun's rays stay thin lines when its disc is filled: the ink says whether it is drawn in lines
+    ink = mark.as_footprint("ink").silhouette(SPRITE_SIDE) if mark.solid else alpha
+    return sprite_pyramid(alpha, device, keep_thin=is_thin(ink))
 
 
 def _reach(units: Units) -> np.ndarray:
