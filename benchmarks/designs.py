@@ -182,9 +182,10 @@ def design_rings():
     return dict(df=df, mark=[ring, circle], size="v", container=c, boundary="closed"), [c]
 
 
-def faint_alpha_png(path) -> None:
+def faint_alpha_png(path) -> np.ndarray:
     """Two touching black rings on white, as a PNG whose alpha channel has 0.3% slightly
-    transparent pixels (alpha 200..250), as real exported container PNGs do."""
+    transparent pixels (alpha 200..250), as real exported container PNGs do; returns the
+    drawn rings, bool (H, W)."""
     y, x = np.mgrid[0:H, 0:W] + 0.5
     ink = np.zeros((H, W), bool)
     for cx in (245, 555):
@@ -196,15 +197,17 @@ def faint_alpha_png(path) -> None:
     faint = rng.choice(W * H, int(0.003 * W * H), replace=False)
     rgba.reshape(-1, 4)[faint, 3] = rng.integers(200, 251, len(faint))
     Image.fromarray(rgba).save(path)
+    return ink
 
 
 def design_faint_png():
-    """The container handed over as a PNG path with faint alpha pixels: read as drawn."""
+    """The container handed over as a PNG path with faint alpha pixels; measured against
+    the rings as drawn, not as read."""
     path = os.path.join(tempfile.gettempdir(), "uw-faint-rings.png")
-    faint_alpha_png(path)
-    c = uw.Container.image(path)
+    drawn = uw.Container.image(faint_alpha_png(path))
     df = pd.DataFrame({"v": lognormal(100, 40, 17)})
-    return dict(df=df, mark="circle", size="v", container=c, boundary="closed"), [c]
+    return dict(df=df, mark="circle", size="v", container=uw.Container.image(path),
+                boundary="closed"), [drawn]
 
 
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
