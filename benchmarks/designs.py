@@ -3,7 +3,8 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads), margins, tall thin marks,
-blocked layers and emitters, turning rectangles and line-drawn sketches. Each
+blocked layers and emitters, turning rectangles, line-drawn sketches, hollow rings
+and a container PNG with faint alpha pixels (assets made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
@@ -170,10 +171,50 @@ def design_suns():
     return dict(df=df, mark=sun, size="v", container=c, boundary="closed"), [c]
 
 
+def design_rings():
+    """Hollow marks: sketched rings and outlined SVG circles; their middles stay free."""
+    t = np.linspace(0, 2 * math.pi, 41)
+    ring = uw.Mark.sketch([np.c_[50 + 40 * np.cos(t), 50 + 40 * np.sin(t)]], width=7)
+    circle = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><circle '
+                         'cx="50" cy="50" r="44" fill="none" stroke="#4e79a7" stroke-width="6"/></svg>')
+    df = pd.DataFrame({"v": lognormal(90, 30, 14)})
+    c = uw.Container.polygon(blob(400, 300, 330, 240, 0.05, 15))
+    return dict(df=df, mark=[ring, circle], size="v", container=c, boundary="closed"), [c]
+
+
+def faint_alpha_png(path) -> np.ndarray:
+    """Two touching black rings on white, as a PNG whose alpha channel has 0.3% slightly
+    transparent pixels (alpha 200..250), as real exported container PNGs do; returns the
+    drawn rings, bool (H, W)."""
+    y, x = np.mgrid[0:H, 0:W] + 0.5
+    ink = np.zeros((H, W), bool)
+    for cx in (245, 555):
+        r = np.hypot(x - cx, y - 300)
+        ink |= (r <= 155) & (r >= 60)
+    rgba = np.full((H, W, 4), 255, np.uint8)
+    rgba[ink, :3] = 0
+    rng = np.random.default_rng(16)
+    faint = rng.choice(W * H, int(0.003 * W * H), replace=False)
+    rgba.reshape(-1, 4)[faint, 3] = rng.integers(200, 251, len(faint))
+    Image.fromarray(rgba).save(path)
+    return ink
+
+
+def design_faint_png():
+    """The container handed over as a PNG path with faint alpha pixels; measured against
+    the rings as drawn, not as read."""
+    path = os.path.join(tempfile.gettempdir(), "uw-faint-rings.png")
+    drawn = uw.Container.image(faint_alpha_png(path))
+    df = pd.DataFrame({"v": lognormal(100, 40, 17)})
+    return dict(df=df, mark="circle", size="v", container=uw.Container.image(path),
+                boundary="closed"), [drawn]
+
+
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
-           "grid90": design_grid, "rects": design_rects, "suns": design_suns}
+           "grid90": design_grid, "rects": design_rects, "suns": design_suns,
+           "rings": design_rings, "faint-png": design_faint_png}
 
 
 def build(name):

@@ -2,13 +2,16 @@
 
 Used by the mark-group tests and benchmarks/groups.py. A pixel (at ``k`` x the
 canvas) is a unit's ink where its alpha > 0.5; overlap is the ink drawn over
-other ink, outside the ink beyond an ellipse, both as shares of all ink.
+other ink, outside the ink beyond an ellipse, both as shares of all ink. A unit's
+silhouette is its ink with enclosed holes filled; ``nested`` is the share of the ink
+inside other units' silhouettes, ``nested_max`` the largest such share of one unit's ink.
 """
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
 import numpy as np
+from scipy import ndimage
 
 from unitopia_widget.output.export import png_array
 from unitopia_widget.io.svgsafe import SVG_NS
@@ -28,15 +31,24 @@ def unit_inks(svg: str, canvas, k: int = 2):
 
 
 def ink_metrics(svg: str, canvas, ellipse=None, k: int = 2) -> dict:
-    """``overlap`` and ``outside`` (shares of the ink), ``areas`` {data-row: ink px at k x}."""
+    """``overlap``, ``outside`` (shares of the ink), ``nested``, ``nested_max`` (see above), ``areas`` and
+    ``silhouettes`` {data-row: ink / silhouette px at k x}."""
     w, h = int(round(canvas[0])), int(round(canvas[1]))
     count = np.zeros((h * k, w * k), np.int32)
-    areas = {}
+    solid = np.zeros((h * k, w * k), np.int32)
+    areas, silhouettes, inks = {}, {}, {}
     for row, ink in unit_inks(svg, canvas, k):
+        filled = ndimage.binary_fill_holes(ink)
         count += ink
-        areas[row] = float(ink.sum())
+        solid += filled
+        areas[row], silhouettes[row] = float(ink.sum()), float(filled.sum())
+        inks[row] = (ink, filled)
+    within = [(float((ink & (solid - filled > 0)).sum()), max(float(ink.sum()), 1.0))
+              for ink, filled in inks.values()]
     total = max(float(count.sum()), 1.0)
-    out = {"overlap": float(np.maximum(count - 1, 0).sum()) / total, "areas": areas, "outside": 0.0}
+    out = {"overlap": float(np.maximum(count - 1, 0).sum()) / total, "areas": areas,
+           "silhouettes": silhouettes, "nested": sum(a for a, _ in within) / total,
+           "nested_max": max((a / b for a, b in within), default=0.0), "outside": 0.0}
     if ellipse is not None:
         y, x = (np.mgrid[0:h * k, 0:w * k] + 0.5) / k
         cx, cy, rx, ry = ellipse

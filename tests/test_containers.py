@@ -142,6 +142,70 @@ def test_image_opaque_pixels_are_inside_when_there_is_transparency():
     assert c.area(CANVAS) == 300 and c.bbox(CANVAS) == (10, 10, 30, 10)
 
 
+def _ring_png(tmp_path, name, ink, paper, *, alpha_paper=255, faint=0, fmt="PNG", aa=False):
+    """A 200 x 160 picture of a thick ring (outer radius 60, inner 30) in colour ``ink``
+    on ``paper`` with alpha ``alpha_paper``; ``faint`` random pixels get alpha 200..250;
+    ``aa`` draws it at 4x and shrinks it (antialiased edges). Returns (path, true mask)."""
+    from PIL import ImageDraw
+    k = 4 if aa else 1
+    img = Image.new("RGBA", (200 * k, 160 * k), (*paper, alpha_paper))
+    draw = ImageDraw.Draw(img)
+    draw.ellipse([40 * k, 20 * k, 160 * k, 140 * k], fill=(*ink, 255))
+    draw.ellipse([70 * k, 50 * k, 130 * k, 110 * k], fill=(*paper, alpha_paper))
+    if aa:
+        img = img.resize((200, 160), Image.Resampling.LANCZOS)
+    rgba = np.asarray(img).copy()
+    rng = np.random.default_rng(0)
+    idx = rng.choice(rgba.shape[0] * rgba.shape[1], faint, replace=False)
+    rgba.reshape(-1, 4)[idx, 3] = rng.integers(200, 251, faint)
+    yy, xx = np.mgrid[:160, :200] + 0.5
+    r = np.hypot(xx - 100, yy - 80)
+    truth = (r <= 60) & (r >= 30)
+    path = tmp_path / f"{name}.{fmt.lower()}"
+    out = Image.fromarray(rgba)
+    (out.convert("RGB") if fmt == "JPEG" else out).save(path, format=fmt)
+    return path, truth
+
+
+@pytest.mark.parametrize("variant", ["black_on_white", "black_on_white_alpha_faint",
+                                     "coloured_on_transparent", "white_on_black_invert",
+                                     "antialiased", "jpeg"])
+def test_image_is_read_as_a_person_sees_it(tmp_path, variant):
+    black, white, gold = (0, 0, 0), (255, 255, 255), (240, 200, 40)
+    kw = {"black_on_white": dict(ink=black, paper=white),
+          # 0.4% of the pixels slightly transparent, as antialiased corners of real PNGs
+          "black_on_white_alpha_faint": dict(ink=black, paper=white, faint=128),
+          "coloured_on_transparent": dict(ink=gold, paper=white, alpha_paper=0),
+          "white_on_black_invert": dict(ink=white, paper=black),
+          "antialiased": dict(ink=black, paper=white, aa=True, faint=64),
+          "jpeg": dict(ink=black, paper=white, fmt="JPEG")}[variant]
+    path, truth = _ring_png(tmp_path, variant, **kw)
+    c = Container.image(path, invert=variant == "white_on_black_invert")
+    mask = np.asarray(c.preview()) == 0
+    assert np.mean(mask != truth) < 0.01, variant
+    assert c.inside_share() == pytest.approx(truth.mean(), abs=0.01)
+
+
+def test_implausible_inside_warns_naming_invert_and_threshold():
+    img = np.zeros((50, 50, 3), np.uint8)                 # all dark: all inside
+    with pytest.warns(UserWarning, match=r"covers 100.00%.*invert=True.*threshold="):
+        Container.image(img)
+    img = np.full((100, 100, 3), 255, np.uint8)
+    img[0, 0] = 0                                        # 0.01% inside
+    with pytest.warns(UserWarning, match=r"covers 0.01%.*invert=True.*threshold="):
+        Container.image(img)
+
+
+def test_container_shows_what_was_read():
+    c = Container.image(white_with_black_block())
+    png = Image.open(io.BytesIO(c._repr_png_()))
+    assert png.size == (120, 100) and np.asarray(png)[40, 60] == 0 and np.asarray(png)[5, 5] == 255
+    assert Container.rect(0, 0, 400, 250).inside_share(CANVAS) == pytest.approx(0.25)
+    assert Container.rect(0, 0, 400, 250).preview(CANVAS).size == (400, 250)
+    with pytest.raises(ValueError, match="canvas_size"):
+        Container.canvas().inside_share()
+
+
 def test_image_threshold_box_and_invert():
     img = np.full((10, 10, 3), 255, np.uint8)
     img[:5] = 100                                   # luminance ~0.39
@@ -177,7 +241,8 @@ def test_magic_wand_selects_the_painted_region_not_its_neighbour():
     assert native.bbox(CANVAS) == (5, 10, 30, 20)
     boxed = Container.from_background(bg, (150, 120), box=(100, 100, 80, 50))
     assert boxed.bbox(CANVAS) == (135, 110, 35, 20)
-    everything = Container.from_background(bg, (20, 20), tolerance=1.0)
+    with pytest.warns(UserWarning, match="tolerance="):
+        everything = Container.from_background(bg, (20, 20), tolerance=1.0)
     assert everything.area(CANVAS) == 80 * 50
 
 
@@ -239,7 +304,8 @@ def test_json_matches_the_protocol():
 def test_from_json_applies_the_threshold_to_an_uploaded_image():
     gray = Image.fromarray(np.full((10, 10, 3), 100, np.uint8))
     d = {"kind": "image", "image": image_data_url(gray), "threshold": 0.5, "box": [0, 0, 10, 10]}
-    assert Container.from_json(d).area(CANVAS) == 100
+    with pytest.warns(UserWarning, match="invert="):
+        assert Container.from_json(d).area(CANVAS) == 100
     with pytest.raises(ValueError, match="no pixel is inside"):
         Container.from_json({**d, "threshold": 0.2})
 

@@ -1,5 +1,5 @@
 """Mark groups (issue 10): several marks in one layer, the shape= channel, joint packing,
-layers sharing a container, design JSON version 2. Layouts are measured from the exported
+layers sharing a container, design JSON version 3. Layouts are measured from the exported
 SVG, every unit rendered alone (tests/ink.py)."""
 from __future__ import annotations
 
@@ -50,10 +50,11 @@ def check_packed(chart, values, label):
     svg = chart.to_svg(legend=False)
     m = ink_metrics(svg, chart.canvas, ellipse=ELLIPSE)
     rows = [str(r) for r in chart.placements["row"]]
-    ratio = np.array([m["areas"][r] for r in rows]) / values.loc[chart.placements["row"]].to_numpy()
+    # size= encodes the footprint's area: the silhouette (ink with enclosed holes filled)
+    ratio = np.array([m["silhouettes"][r] for r in rows]) / values.loc[chart.placements["row"]].to_numpy()
     spread = float(ratio.std() / ratio.mean())
     print(f"{label}: overlap {100 * m['overlap']:.2f}%, outside {100 * m['outside']:.2f}% of the ink, "
-          f"ink area / value spread {100 * spread:.1f}%, {chart.result.iterations} iterations")
+          f"silhouette area / value spread {100 * spread:.1f}%, {chart.result.iterations} iterations")
     assert m["overlap"] <= 0.01
     assert m["outside"] <= 0.005
     assert spread < 0.05   # size= stays exact in area whatever the mark
@@ -152,13 +153,14 @@ def test_layers_sharing_one_container_collide_both_ways():
     assert not problem.terms.blocks.any()                              # different containers: independent
 
 
-def test_design_json_round_trip_version_2():
+def test_design_json_round_trip_version_3():
     df = pd.DataFrame({"kind": ["x", "y", "z", 3] * 2, "v": np.arange(1.0, 9.0)})
     chart = uw.Chart(df, mark={"x": "fa:lemon", "y": str(DATA / "class_styled.svg"), "z": "star", 3: "drop"},
                      shape="kind", size="v")
     design = json.loads(json.dumps(chart.design()))
-    assert design["version"] == 2
+    assert design["version"] == 3
     layer = design["layers"][0]
+    assert layer["footprint"] == "silhouette"
     assert layer["mark_keys"] == ["x", "y", "z", 3] and layer["encodings"]["shape"] == "kind"
     assert layer["marks"][0] == {"kind": "icon", "name": "fa:lemon"} and "mark" not in layer
     other = uw.Chart(df)
@@ -179,7 +181,8 @@ def test_version_1_designs_still_load():
     chart.apply_design(v1)
     assert chart.layers[0].marks == [uw.Mark.shape("heart")] and chart.layers[0].encodings["shape"] is None
     saved = chart.design()
-    assert saved["version"] == 2 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
+    assert saved["version"] == 3 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
+    assert saved["layers"][0]["footprint"] == "ink"      # as version 1 and 2 laid it out
     edited = chart.design()   # an editor that knows only version 1 sets "mark": it wins
     edited["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
     chart.apply_design(edited)

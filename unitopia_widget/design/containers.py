@@ -10,7 +10,9 @@ nested subpaths are holes. Rasterisation lives in :mod:`.regions`.
 from __future__ import annotations
 
 import copy
+import io
 import math
+import warnings
 
 import numpy as np
 from PIL import Image
@@ -20,6 +22,7 @@ from ..io.images import check_pixels, image_data_url, load_image
 from .validate import check_finite, check_positive
 
 KINDS = ("canvas", "rect", "ellipse", "polygon", "path", "image")
+MAX_INSIDE_SHARE, MIN_INSIDE_SHARE = 0.9, 0.001  # image containers outside these warn
 MAX_COORD = 1e9  # canvas px: larger coordinates are rejected (they only lose precision)
 _FIELDS = {"canvas": (), "rect": ("x", "y", "w", "h"), "ellipse": ("cx", "cy", "rx", "ry"),
            "polygon": ("points",), "path": ("d",), "image": ("image",)}
@@ -144,14 +147,22 @@ class Container:
 
         ``source``: a path, data URL, bytes, PIL image or array (see
         :func:`.images.load_image`); a 2-D boolean array is the mask itself (True
-        inside). Inside = opaque pixels if any pixel has transparency, else pixels
-        with luminance < ``threshold`` (in (0, 1]); ``invert`` swaps inside and out.
+        inside). The image is read as a person sees it: if transparency is its
+        background (at least half the border pixels have alpha < 50%), inside is
+        the opaque figure, whatever its colour; otherwise the image is composited
+        over white and inside is what is darker than ``threshold`` (luminance in
+        (0, 1]), so faint alpha pixels, antialiased edges and JPEGs read as drawn.
+        ``invert`` swaps inside and out. Warns when the inside covers more than
+        90% or less than 0.1% of the image; check :meth:`inside_share` or show the
+        container in a notebook to see what was read.
         """
         return cls._image("Container.image", source, threshold, box, invert)
 
     @classmethod
-    def _image(cls, owner, source, threshold, box, invert) -> "Container":
-        """Shared body of the image constructors; ``owner`` names the caller in errors."""
+    def _image(cls, owner, source, threshold, box, invert, advice=None) -> "Container":
+        """Shared body of the image constructors; ``owner`` names the caller in errors,
+        ``advice`` ends the warning of an implausible inside share (default: name
+        ``invert=`` and ``threshold=``)."""
         threshold = check_finite(owner, "threshold", threshold)
         if not 0 < threshold <= 1:
             raise ValueError(f"{owner}: threshold must be in (0, 1], got {threshold:g}")
@@ -165,6 +176,12 @@ class Container:
         else:
             rgba = np.asarray(load_image(source))
             mask = regions.mask_from_rgba(owner, rgba, threshold, bool(invert))
+        share = float(mask.mean())
+        if share > MAX_INSIDE_SHARE or share < MIN_INSIDE_SHARE:
+            advice = advice or ("pass invert=True (inside and out swapped) or another "
+                                f"threshold= (now {threshold:g}; pixels darker than it are inside)")
+            warnings.warn(f"{owner}: the inside covers {share:.2%} of the image; if the shape "
+                          f"was read wrong, {advice}", stacklevel=3)
         return cls("image", {"threshold": threshold, "box": None if box is None else list(box)},
                    mask=mask)
 
@@ -220,7 +237,8 @@ class Container:
                              f"x {place[0]:g}..{place[0] + place[2]:g}, y {place[1]:g}..{place[1] + place[3]:g}")
         mask = regions.wand_mask(rgba, row, col, tolerance)
         return cls._image(o, mask, 0.5, box if box is not None or canvas_size is not None
-                          else place, False)
+                          else place, False,
+                          advice=f"pick another point or tolerance= (now {tolerance:g})")
 
     # ---- editing and serialisation -----------------------------------------------
     def cut(self, points, width: float) -> "Container":
@@ -296,6 +314,40 @@ class Container:
             args = ", ".join(f"{self._params[f]:g}" for f in _FIELDS[self._kind])
         cuts = f".cut(...) x {len(self._cuts)}" if self._cuts else ""
         return f"Container.{self._kind}({args}){cuts}"
+
+    def inside_share(self, canvas_size=None) -> float:
+        """Share in [0, 1] of the canvas of ``canvas_size`` inside the region; for image
+        kinds without ``canvas_size``, the share of the image's pixels read as inside."""
+        if canvas_size is None:
+            if self._kind != "image":
+                raise ValueError(f"Container.inside_share: a {self._kind!r} container needs "
+                                 "canvas_size=(width, height)")
+            return float(self._mask.mean())
+        w, h = _canvas("Container.inside_share", canvas_size)
+        return self.area((w, h)) / (w * h)
+
+    def preview(self, canvas_size=None, rho: float | None = None) -> Image.Image:
+        """A PIL picture of what is inside (black) and outside (white): image kinds at
+        the mask's own size by default, other kinds on the canvas of ``canvas_size``
+        at ``rho`` raster px per canvas px (default: at most 400 px wide)."""
+        if canvas_size is None and self._kind == "image" and not self._cuts:
+            inside = self._mask
+        else:
+            if canvas_size is None:
+                raise ValueError(f"Container.preview: a {self._kind!r} container needs "
+                                 "canvas_size=(width, height)")
+            size = _canvas("Container.preview", canvas_size)
+            rho = min(1.0, 400 / size[0]) if rho is None else rho
+            inside = self.coverage(size, rho) >= 0.5
+        return Image.fromarray(np.where(inside, 0, 255).astype(np.uint8), "L")
+
+    def _repr_png_(self) -> bytes | None:
+        """The :meth:`preview` of image kinds as PNG bytes, for notebooks."""
+        if self._kind != "image":
+            return None
+        buf = io.BytesIO()
+        self.preview().save(buf, format="PNG")
+        return buf.getvalue()
 
     # ---- geometry ------------------------------------------------------------------
     def coverage(self, canvas_size, rho: float) -> np.ndarray:

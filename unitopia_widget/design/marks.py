@@ -22,11 +22,13 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 from PIL import Image
+from scipy import ndimage
 
 from . import icons
 from ..io import images, svgsafe
 
 DEFAULT_COLOR = "#4e79a7"
+FOOTPRINTS = ("silhouette", "ink")   # what a mark collides with: ink with holes filled, or ink
 FILL_FRACTION_SIDE = 512
 _BOX_SEARCH_SIDE = 1024
 _ROOT_ONLY = {"width", "height", "viewBox", "x", "y", "preserveAspectRatio", "version",
@@ -192,12 +194,26 @@ class Mark:
     """An immutable mark. Build one with :meth:`shape`, :meth:`svg`, :meth:`image`,
     :meth:`sketch`, :meth:`from_spec` or :meth:`from_json`."""
 
-    __slots__ = ("kind", "_json", "_root", "_box", "_image", "_cache", "_hash")
+    __slots__ = ("kind", "_json", "_root", "_box", "_image", "_cache", "_hash", "solid")
 
-    def __init__(self, kind: str, json_dict: dict, *, root=None, box=None, image=None):
+    def __init__(self, kind: str, json_dict: dict, *, root=None, box=None, image=None,
+                 solid: bool = False):
         for name, value in (("kind", kind), ("_json", json_dict), ("_root", root),
-                            ("_box", box), ("_image", image), ("_cache", {}), ("_hash", None)):
+                            ("_box", box), ("_image", image), ("_cache", {}), ("_hash", None),
+                            ("solid", solid)):
             object.__setattr__(self, name, value)
+
+    def as_footprint(self, footprint: str) -> "Mark":
+        """This mark as layout sees it under a layer's ``footprint`` (one of
+        :data:`FOOTPRINTS`): ``"silhouette"`` fills the holes its ink encloses (a ring
+        keeps other marks out of its middle), ``"ink"`` collides with the ink alone.
+        Both draw the same ink; only :meth:`silhouette` differs."""
+        check_footprint("footprint", footprint)
+        solid = footprint == "silhouette"
+        if solid == self.solid:
+            return self
+        return Mark(self.kind, self._json, root=self._root, box=self._box, image=self._image,
+                    solid=solid)
 
     def __setattr__(self, name, value):
         raise AttributeError("Mark is immutable")
@@ -359,6 +375,9 @@ class Mark:
         render with every opacity at 1, raster alpha counts double (so a
         half-transparent pixel is occupied), and edges stay anti-aliased.
 
+        A :attr:`solid` mark (see :meth:`as_footprint`) also covers every hole its
+        ink encloses, at full alpha.
+
         The render is cached per ``max_side`` (for every equal mark in the
         process: a new chart with the same marks renders nothing); each call
         returns a fresh copy.
@@ -373,9 +392,13 @@ class Mark:
     def _render(self, max_side: int) -> np.ndarray:
         size = _pixel_size(self.aspect, max_side)
         if self._image is not None:
-            return np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
-        rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
-        return rgba[..., 3].astype(np.float32) / 255.0
+            alpha = np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
+        else:
+            rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
+            alpha = rgba[..., 3].astype(np.float32) / 255.0
+        if self.solid:
+            alpha = np.maximum(alpha, ndimage.binary_fill_holes(alpha >= 0.5).astype(np.float32))
+        return alpha
 
     # --- output -------------------------------------------------------------
     def svg_fragment(self, def_id: str, color: str | None = None) -> str:
@@ -413,16 +436,26 @@ class Mark:
         return copy.deepcopy(self._json)
 
     def __eq__(self, other):
-        return isinstance(other, Mark) and self._json == other._json
+        return isinstance(other, Mark) and self._json == other._json and self.solid == other.solid
 
     def __hash__(self):
         if self._hash is None:
-            object.__setattr__(self, "_hash", hash(json.dumps(self._json, sort_keys=True)))
+            object.__setattr__(self, "_hash", hash((json.dumps(self._json, sort_keys=True),
+                                                    self.solid)))
         return self._hash
 
     def __repr__(self):
         name = f" {self._json['name']!r}" if self.kind in ("shape", "icon") else ""
         return f"<Mark {self.kind}{name} aspect={self.aspect:.3g}>"
+
+
+def check_footprint(name: str, value) -> str:
+    """``value`` if it is one of :data:`FOOTPRINTS`, else a ValueError naming ``name``."""
+    if not isinstance(value, str) or value not in FOOTPRINTS:
+        raise ValueError(f"{name} must be one of {', '.join(map(repr, FOOTPRINTS))} "
+                         f"(\"silhouette\": holes the ink encloses are filled; \"ink\": marks may "
+                         f"nest in each other's holes), got {value!r}")
+    return value
 
 
 @functools.lru_cache(maxsize=128)

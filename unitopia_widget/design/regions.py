@@ -265,16 +265,31 @@ def _crossing_ys(edges: np.ndarray) -> np.ndarray:
     return p[hit, 1] + t[hit] * r[hit, 1]
 
 
-def mask_from_rgba(owner: str, rgba: np.ndarray, threshold: float, invert: bool) -> np.ndarray:
-    """Inside mask (h, w) of a uint8 (h, w, 4) image: opaque pixels (alpha >= 50%) if
-    any pixel is not fully opaque, else pixels darker than ``threshold`` (luminance
-    in [0, 1]); ``invert`` swaps. ValueError if no pixel is inside."""
+def transparent_background(rgba: np.ndarray) -> bool:
+    """True if transparency is the background of a uint8 (h, w, 4) image: at least
+    half of its border pixels are transparent (alpha < 50%). A few faint pixels at
+    corners or edges are not a background; a figure cut out on transparency is."""
     alpha = rgba[..., 3]
-    if (alpha < 255).any():
+    border = np.concatenate([alpha[0], alpha[-1], alpha[1:-1, 0], alpha[1:-1, -1]])
+    return bool(np.mean(border < 128) >= 0.5)
+
+
+def mask_from_rgba(owner: str, rgba: np.ndarray, threshold: float, invert: bool) -> np.ndarray:
+    """Inside mask (h, w) of a uint8 (h, w, 4) image, read as a person sees it.
+
+    If transparency is the background (:func:`transparent_background`), inside is
+    the figure: opaque pixels (alpha >= 50%), whatever their colour. Otherwise the
+    image is composited over white and inside is what is darker than ``threshold``
+    (Rec. 709 luminance in [0, 1]), so faint alpha pixels, antialiased edges and
+    JPEGs read as drawn. ``invert`` swaps. ValueError if no pixel is inside."""
+    alpha = rgba[..., 3]
+    if transparent_background(rgba):
         mask, rule = alpha >= 128, ("opaque", "transparent")
     else:
         weights = np.array([2126, 7152, 722], np.int64)           # Rec. 709 luma, sum 10000
         lum = (rgba[..., :3].astype(np.int64) @ weights) / (10000 * 255)  # exactly 1.0 for white
+        a = alpha / 255
+        lum = lum * a + (1 - a)                                     # over white
         mask, rule = lum < threshold, (f"darker than threshold {threshold:g}",
                                        f"lighter than threshold {threshold:g}")
     if invert:

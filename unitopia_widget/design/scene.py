@@ -14,10 +14,10 @@ import numpy as np
 from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .forces import DirectionalForce, PointForce, force_from_json
-from .marks import Mark
+from .marks import Mark, check_footprint
 from .validate import check_choice, check_finite, closest
 
-SCHEMA, VERSION = "unitopia-design", 2
+SCHEMA, VERSION = "unitopia-design", 3
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
@@ -25,7 +25,7 @@ BOUNDARIES = ("closed", "open")
 MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
-                "rotate", "blocks", "iterations", "name") + CHANNELS
+                "rotate", "blocks", "iterations", "footprint", "name") + CHANNELS
 
 
 class Layer:
@@ -39,11 +39,15 @@ class Layer:
     sorted categories take the marks in turn) or ``{category: spec}`` (with
     ``shape=``). ``marks`` holds the Marks, ``mark_keys`` the dict's categories
     (None for a list).
+
+    ``footprint``: what a mark collides with; ``"silhouette"`` (default) its ink
+    with enclosed holes filled, so a ring keeps other marks out of its middle;
+    ``"ink"`` its ink alone, for marks meant to nest. The export draws the ink.
     """
 
     def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
                  forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
-                 blocks=(), iterations=600, on_change=None, **encodings):
+                 blocks=(), iterations=600, footprint="silhouette", on_change=None, **encodings):
         self._on_change = None
         self.name, self.rows = layer_name(name), _rows(rows)
         self.marks, self.mark_keys = _mark_set("circle" if mark is None else mark)
@@ -52,10 +56,10 @@ class Layer:
         self.container = self.emitter = None
         self.forces, self.blocks = [], []
         self.boundary, self.fill, self.orientation = "closed", None, None
-        self.rotate, self.iterations = False, 600
+        self.rotate, self.iterations, self.footprint = False, 600, "silhouette"
         self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
                  fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
-                 iterations=iterations, **encodings)
+                 iterations=iterations, footprint=footprint, **encodings)
         self._on_change = on_change
 
     def set(self, **fields) -> "Layer":
@@ -107,6 +111,7 @@ class Layer:
             "forces": [f.to_json() for f in self.forces],
             "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
             "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
+            "footprint": self.footprint,
         }
 
     @classmethod
@@ -133,7 +138,7 @@ class Layer:
                    boundary=d.get("boundary", "closed"), fill=d.get("fill"),
                    orientation=d.get("orientation"), rotate=d.get("rotate", False),
                    blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
-                   on_change=on_change, **enc)
+                   footprint=d.get("footprint", "silhouette"), on_change=on_change, **enc)
 
     def __repr__(self) -> str:
         bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
@@ -316,6 +321,7 @@ _CHECKS = {
     "fill": _fill, "orientation": _orientation, "rotate": _rotate,
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
     "iterations": _iterations, "name": lambda v: layer_name(v),
+    "footprint": lambda v: check_footprint("footprint", v),
     **{c: _channel(c) for c in CHANNELS},
 }
 
@@ -361,6 +367,15 @@ def block_order(layers) -> list[int]:
     for i in range(len(layers)):
         visit(i, [])
     return out
+
+
+def ink_footprints_before_v3(d: dict) -> dict:
+    """``d`` with every layer of a design older than version 3 given ``footprint="ink"``
+    (version 3 made filled silhouettes the default), so it lays out as it did."""
+    if d.get("version", VERSION) >= 3:
+        return d
+    layers = [{"footprint": "ink", **x} if isinstance(x, dict) else x for x in d.get("layers") or []]
+    return {**d, "layers": layers}
 
 
 def check_design_header(d) -> None:

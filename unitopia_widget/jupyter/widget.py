@@ -48,7 +48,9 @@ class UnitoPia(anywidget.AnyWidget):
     ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
-    covered; open default 0.5), ``orientation``, ``rotate``, ``canvas`` (w, h) px,
+    covered; open default 0.5), ``orientation``, ``rotate``, ``footprint`` ("silhouette":
+    a mark collides with its ink with enclosed holes filled; "ink": its ink alone, so
+    marks may nest), ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),
     ``iterations`` (cap per run), ``dropna`` (drop rows with unusable values, warning),
     ``scales`` ("shared", the default: one global scale, so sizes stay comparable

@@ -48,7 +48,7 @@ class Units:
     colors: list             # CSS hex colour per unit
     mark: np.ndarray         # index of the unit's mark within its layer's marks
     sprite: np.ndarray       # index of the unit's mark in ``sprites``
-    sprites: list            # the distinct Marks drawn, one sprite pyramid each
+    sprites: list            # the distinct footprint Marks (Mark.as_footprint), one sprite pyramid each
 
     @property
     def fill_fraction(self) -> np.ndarray:
@@ -103,9 +103,10 @@ def bind(df: pd.DataFrame, layers) -> Units:
                 column = sub[e[channel]].to_numpy(dtype=float)
                 setattr(enc, attr, getattr(enc, attr) * column.mean() / _positive_mean(df[e[channel]]))
         choice = mark_choice(df, sub, layer)
-        sprite = np.array([sprites.setdefault(m, len(sprites)) for m in layer.marks])[choice]
-        aspect = np.array([m.aspect for m in layer.marks])[choice]
-        fill = np.array([m.fill_fraction for m in layer.marks])[choice]
+        feet = [m.as_footprint(layer.footprint) for m in layer.marks]   # what collides
+        sprite = np.array([sprites.setdefault(m, len(sprites)) for m in feet])[choice]
+        aspect = np.array([m.aspect for m in feet])[choice]
+        fill = np.array([m.fill_fraction for m in feet])[choice]
         # the box whose silhouette has area enc.area: h0 * (aspect * h0) * fill_fraction = area
         h0 = np.sqrt(enc.area / (aspect * fill))
         parts.append((i, h0 * aspect * enc.width / 2, h0 * enc.height / 2, enc, choice, sprite))
@@ -275,7 +276,9 @@ def _pyramid(mark, device: str) -> list:
     """The sprite pyramid of ``mark`` on ``device``, made once per process (marks are
     immutable and the solver only reads it): a second layout skips the render."""
     alpha = mark.silhouette(SPRITE_SIDE)
-    return sprite_pyramid(alpha, device, keep_thin=is_thin(alpha))
+    # a sun's rays stay thin lines when its disc is filled: the ink says whether it is drawn in lines
+    ink = mark.as_footprint("ink").silhouette(SPRITE_SIDE) if mark.solid else alpha
+    return sprite_pyramid(alpha, device, keep_thin=is_thin(ink))
 
 
 def _reach(units: Units) -> np.ndarray:

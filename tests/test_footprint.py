@@ -1,0 +1,90 @@
+"""Footprints (issue 18): by default a mark collides with its silhouette, its ink with
+enclosed holes filled, so hollow marks keep others out of their middle; footprint="ink"
+keeps the ink alone. Layouts are measured from the exported SVG (tests/ink.py)."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+import torch
+from PIL import Image, ImageDraw
+
+import unitopia_widget as uw
+from ink import ink_metrics
+
+ELLIPSE = (200, 150, 180, 130)
+_T = np.linspace(0, 2 * np.pi, 41)
+RING = uw.Mark.sketch([np.column_stack([50 + 40 * np.cos(_T), 50 + 40 * np.sin(_T)])], width=8)
+SVG_RING = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+            '<circle cx="50" cy="50" r="42" fill="none" stroke="#333" stroke-width="8"/></svg>')
+
+
+def png_ring() -> Image.Image:
+    img = Image.new("RGBA", (100, 100), (0, 0, 0, 0))
+    draw = ImageDraw.Draw(img)
+    draw.ellipse([4, 4, 96, 96], outline=(200, 40, 40, 255), width=9)
+    return img
+
+
+@pytest.mark.parametrize("mark", [RING, uw.Mark.svg(SVG_RING), uw.Mark.image(png_ring())],
+                         ids=["sketch", "svg", "png"])
+def test_a_solid_footprint_fills_the_hole_and_draws_the_same_ink(mark):
+    ink = mark.as_footprint("ink").silhouette(128)
+    solid = mark.as_footprint("silhouette")
+    filled = solid.silhouette(128)
+    assert ink[64, 64] == 0 and filled[64, 64] == 1           # the middle: empty ink, full footprint
+    assert filled.mean() > 2 * ink.mean()
+    assert np.all(filled >= ink)                              # the ink itself is kept
+    assert solid.svg_fragment("m") == mark.svg_fragment("m") and solid.to_json() == mark.to_json()
+    assert solid != mark.as_footprint("ink") and solid.as_footprint("silhouette") is solid
+
+
+def test_footprint_is_validated_saved_and_old_designs_keep_ink():
+    df = pd.DataFrame({"v": [1.0, 2.0]})
+    with pytest.raises(ValueError, match=r"footprint must be one of 'silhouette', 'ink'.*got 'holes'"):
+        uw.Chart(df, footprint="holes")
+    chart = uw.Chart(df, mark=RING, footprint="ink")
+    design = json.loads(json.dumps(chart.design()))
+    assert design["version"] == 3 and design["layers"][0]["footprint"] == "ink"
+    other = uw.Chart(df)
+    assert other.layers[0].footprint == "silhouette"
+    other.apply_design(design)
+    assert other.layers[0].footprint == "ink"
+    design["layers"][0].pop("footprint")
+    other.apply_design(design)                                # version 3 without the key: default
+    assert other.layers[0].footprint == "silhouette"
+    other.apply_design({**design, "version": 2})              # laid out on ink before version 3
+    assert other.layers[0].footprint == "ink"
+    with pytest.raises(ValueError, match="footprint must be one of"):
+        other.layers[0].set(footprint=None)
+
+
+@pytest.fixture(scope="module")
+def rings():
+    """The same 40 rings of lognormal sizes in an ellipse, laid out with each footprint."""
+    before = torch.get_num_threads()
+    torch.set_num_threads(1)
+    df = pd.DataFrame({"v": np.random.default_rng(1).lognormal(0, 0.8, 40)})
+    out = {}
+    for footprint in ("silhouette", "ink"):
+        chart = uw.Chart(df, mark=RING, size="v", container=uw.Container.ellipse(*ELLIPSE),
+                         canvas=(400, 300), footprint=footprint, iterations=200)
+        chart.layout()
+        out[footprint] = ink_metrics(chart.to_svg(legend=False), chart.canvas, ellipse=ELLIPSE)
+    torch.set_num_threads(before)
+    return out
+
+
+def test_rings_keep_other_rings_out_of_their_middle(rings):
+    m = rings["silhouette"]
+    print(f"silhouette: {100 * m['nested']:.2f}% of the ink inside other silhouettes, overlap "
+          f"{100 * m['overlap']:.2f}%, outside {100 * m['outside']:.2f}%")
+    assert m["nested"] <= 0.01 and m["overlap"] <= 0.01 and m["outside"] <= 0.005
+
+
+def test_ink_footprints_let_rings_nest(rings):
+    m = rings["ink"]
+    print(f"ink: {100 * m['nested']:.2f}% of the ink inside other silhouettes")
+    assert m["nested"] > 0.05 and m["overlap"] <= 0.01
