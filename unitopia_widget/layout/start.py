@@ -19,6 +19,7 @@ from ..design.emitters import CurveEmitter, GridEmitter
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
+from .losses import sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
@@ -77,6 +78,11 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
+                if key in packings and sweep_of(layer.forces) is not None:
+                    # strata: the layers it rests on take the room below their tops
+                    below = [j for j in order[:order.index(i)] if resting(layers, i, j)]
+                    packings[key].stamp(*_swept(s.center, radius, units.layer, below,
+                                                sweep_of(layer.forces), canvas))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas)
             except ValueError as exc:
@@ -165,6 +171,33 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
         return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
+
+
+def resting(layers, a: int, b: int) -> bool:
+    """Whether layer ``a`` blocks on layer ``b``, directly or through a chain of blocks."""
+    names = [layer.name for layer in layers]
+    seen, todo = set(), list(layers[a].blocks)
+    while todo:
+        name = todo.pop()
+        if name not in seen:
+            seen.add(name)
+            todo.extend(layers[names.index(name)].blocks)
+    return layers[b].name in seen
+
+
+def _swept(center, radius, layer_of, below, sweep, canvas):
+    """Discs ``(k, 2)``, ``(k,)`` whose union is the shadow of the discs of layers ``below``
+    swept along ``sweep`` (see ``losses.shadow``) to the canvas edge, in steps of half a radius."""
+    dim, reverse = sweep
+    step = np.zeros(2)
+    step[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
+    centers, radii = [np.zeros((0, 2))], [np.zeros(0)]
+    for j in below:
+        for c, r in zip(center[layer_of == j], radius[layer_of == j]):
+            k = np.arange(int(max(canvas) / max(r / 2, 1.0)) + 1)
+            centers.append(c + (k * r / 2)[:, None] * step)
+            radii.append(np.full(len(k), r))
+    return np.concatenate(centers), np.concatenate(radii)
 
 
 def _lengthwise(layer, units, idx) -> bool:
