@@ -81,8 +81,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 if key in packings and sweep_of(layer.forces) is not None:
                     # strata: the layers it rests on take the room below their tops
                     below = [j for j in order[:order.index(i)] if resting(layers, i, j)]
-                    packings[key].stamp(*_swept(s.center, radius, units.layer, below,
-                                                sweep_of(layer.forces), canvas))
+                    packings[key].stamp_swept(*_swept(s.center, radius, units.layer, below,
+                                                      sweep_of(layer.forces)))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas)
             except ValueError as exc:
@@ -185,19 +185,14 @@ def resting(layers, a: int, b: int) -> bool:
     return layers[b].name in seen
 
 
-def _swept(center, radius, layer_of, below, sweep, canvas):
-    """Discs ``(k, 2)``, ``(k,)`` whose union is the shadow of the discs of layers ``below``
-    swept along ``sweep`` (see ``losses.shadow``) to the canvas edge, in steps of half a radius."""
+def _swept(center, radius, layer_of, below, sweep):
+    """Discs ``(k, 2)``, ``(k,)`` of layers ``below`` and the canvas direction ``(2,)`` of
+    ``sweep`` (a raster axis, see ``losses.shadow``) along which they shadow the room."""
     dim, reverse = sweep
-    step = np.zeros(2)
-    step[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
-    centers, radii = [np.zeros((0, 2))], [np.zeros(0)]
-    for j in below:
-        for c, r in zip(center[layer_of == j], radius[layer_of == j]):
-            k = np.arange(int(max(canvas) / max(r / 2, 1.0)) + 1)
-            centers.append(c + (k * r / 2)[:, None] * step)
-            radii.append(np.full(len(k), r))
-    return np.concatenate(centers), np.concatenate(radii)
+    direction = np.zeros(2)
+    direction[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
+    mine = np.isin(layer_of, below)
+    return center[mine], radius[mine], direction
 
 
 def _lengthwise(layer, units, idx) -> bool:
