@@ -2,9 +2,10 @@
 
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
-heavy-tailed data (lognormal, 100x-700x spreads), margins, tall thin marks,
-blocked layers and emitters, turning rectangles, line-drawn sketches, hollow rings
-and a container PNG with faint alpha pixels (assets made in code). Each
+heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
+margins, tall thin marks, blocked layers and emitters (a stack whose layers
+shrink 4x), turning rectangles, line-drawn sketches, hollow rings and a
+container PNG with faint alpha pixels (assets made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
@@ -134,6 +135,26 @@ def design_flowers():
     return w, [c]
 
 
+def design_strata():
+    """Five layers blocked in turn in two piles, largest marks first, each layer's
+    linear size 4^(1/4)x below the last (4x from first to last)."""
+    k = np.repeat(np.arange(5), 24)
+    df = pd.DataFrame({"year": k, "v": lognormal(120, 4, 14) * 16.0 ** (-k / 4)})
+    c = two_piles()
+    w = uw.UnitoPia(df, mark="circle", size="v", by="year", container=c, canvas=(W, H),
+                    forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
+    for j in range(1, 5):
+        w.layer(str(j)).set(blocks=[str(j - 1)])
+    return w, [c]
+
+
+def design_pareto():
+    """300 Pareto(0.6) values (a spread of about 760,000x) in a closed ellipse."""
+    df = pd.DataFrame({"followers": np.random.default_rng(0).pareto(0.6, 300) + 1})
+    c = uw.Container.ellipse(400, 300, 360, 260)
+    return dict(df=df, mark="circle", size="followers", container=c, boundary="closed"), [c]
+
+
 def design_seesaw():
     df = pd.DataFrame({"kind": ["work"] * 40 + ["life"] * 40, "hours": lognormal(80, 10, 6)})
     c = seesaw()
@@ -214,7 +235,8 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
-           "rings": design_rings, "faint-png": design_faint_png}
+           "rings": design_rings, "faint-png": design_faint_png,
+           "strata": design_strata, "pareto": design_pareto}
 
 
 def build(name):

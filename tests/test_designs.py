@@ -160,3 +160,18 @@ def test_empty_share_counts_the_container_far_from_any_mark():
     # pixels more than 3 px from the cover: columns 13..19 of 20
     assert empty_share(cover, inside, 3.0) == pytest.approx(7 / 20)
     assert empty_share(np.ones((10, 20)), inside, 3.0) == 0.0
+
+
+def test_a_pareto_column_whose_largest_mark_outgrows_every_patch_lays_out_inside():
+    # Pareto(0.6): one value dominates (spread ~760,000x); among 300 small marks the raster
+    # is fine, and its disc spans more raster pixels than the largest patch (once refused)
+    v = np.random.default_rng(0).pareto(0.6, 300) + 1
+    c = uw.Chart(pd.DataFrame({"v": v}), size="v", canvas=(800, 600), boundary="closed",
+                 iterations=20, container=uw.Container.ellipse(400, 300, 360, 260))
+    table = c.layout()
+    r, x, y = (table[k].to_numpy() for k in ("width", "x", "y"))
+    r = r / 2
+    t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    rim_x, rim_y = x[:, None] + r[:, None] * np.cos(t), y[:, None] + r[:, None] * np.sin(t)
+    reach = ((rim_x - 400) / 360) ** 2 + ((rim_y - 300) / 260) ** 2   # <= 1 inside
+    assert (reach <= 1.03).all()

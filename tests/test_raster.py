@@ -107,10 +107,22 @@ def test_plan_groups_gives_rotating_marks_a_square_patch_holding_any_angle():
     assert ph == pw and pw >= 2 * math.hypot(20, 5)       # square, holds the diagonal
 
 
-def test_plan_groups_rejects_a_mark_larger_than_the_largest_patch():
-    with pytest.raises(ValueError, match="more than the largest patch"):
-        plan_groups(np.array([600.0]), np.array([600.0]), np.array([0]), [256],
-                    np.array([False]), 1.0)
+def test_a_mark_larger_than_the_largest_patch_renders_strided_with_its_area():
+    # 1200 raster px across: a strided patch (one sample per 2 x 2 pixels) holds it
+    groups = plan_groups(np.array([600.0]), np.array([600.0]), np.array([0]), [256],
+                         np.array([False]), 1.0)
+    (_, _, _, ph, pw), = groups
+    assert ph == pw and ph > PATCH_SIDES[-1] and ph % 2 == 0
+    grid = RasterGrid((1300.0, 1300.0), 1.0, pad=2)
+    pyramid = sprite_pyramid(disc_alpha(), "cpu")
+    center = torch.tensor([[650.0, 650.0]], requires_grad=True)
+    values, index, _ = render_samples(center, torch.zeros(1), torch.tensor([600.0]),
+                                      torch.tensor([600.0]), groups, [pyramid], grid)
+    coverage = accumulate(values, index, grid.size)
+    assert float(coverage.detach().sum()) == pytest.approx(math.pi * 600 ** 2, rel=5e-3)
+    assert float(coverage.detach().max()) <= 1.0 + 1e-5   # every pixel once, no block written twice
+    coverage[: grid.size // 2].sum().backward()   # the top half: moves up with the mark
+    assert float(center.grad[0, 1]) < 0
 
 
 # --- render_samples ------------------------------------------------------------

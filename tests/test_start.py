@@ -93,6 +93,35 @@ def test_blocked_layers_without_an_emitter_start_and_end_stacked_in_two_piles():
     assert lefts == 3 and table[table["x"] > 210]["layer"].nunique() == 3   # both piles stacked
 
 
+def below_envelope(table, lower: str, upper: str) -> float:
+    """Share of layer ``upper``'s discs whose centre lies below the upper envelope (the
+    topmost ink, column by column) of layer ``lower``'s discs."""
+    xs = np.arange(0.0, 400.0, 2.0)
+    top = np.full(len(xs), np.inf)
+    for x, y, w in table[table["layer"] == lower][["x", "y", "width"]].to_numpy():
+        near = np.abs(xs - x) < w / 2
+        top[near] = np.minimum(top[near], y - np.sqrt((w / 2) ** 2 - (xs[near] - x) ** 2))
+    up = table[table["layer"] == upper]
+    column = np.abs(xs[None, :] - up["x"].to_numpy()[:, None]).argmin(1)
+    return float(np.mean(up["y"].to_numpy() > top[column]))
+
+
+def test_stacked_layers_rest_in_strata_though_the_last_are_four_times_smaller():
+    # largest first: the small marks once sifted through the gaps between the big ones
+    k = np.repeat(np.arange(4), 14)
+    df = pd.DataFrame({"k": k, "v": lognormal(56, 4, 2) * 16.0 ** (-k / 3)})
+    vessel = uw.Container.polygon([(20, 20), (40, 280), (190, 280), (200, 150), (210, 150),
+                                   (220, 280), (370, 280), (390, 20)])
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open", container=vessel,
+                     forces=[uw.DirectionalForce(90)], iterations=300)
+    for j in (1, 2, 3):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    table = chart.layout()
+    end_y = table.groupby("layer")["y"].mean()
+    assert end_y["0"] > end_y["1"] > end_y["2"] > end_y["3"]
+    assert max(below_envelope(table, str(j - 1), str(j)) for j in (1, 2, 3)) <= 0.05
+
+
 def test_unequal_sizes_settle_in_about_as_many_iterations_as_equal_ones():
     def settle(values):
         chart = uw.Chart(pd.DataFrame({"v": values}), size="v", canvas=(720, 415), seed=0,

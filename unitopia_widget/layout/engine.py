@@ -22,7 +22,7 @@ import torch
 from .atlas import SpriteAtlas
 from ..design.encodings import Encoded, check_column, encode, footprint, palette_for, unhashable
 from ..design.groups import mark_choice
-from .losses import CanvasTerms
+from .losses import CanvasTerms, sweep_of
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
@@ -226,16 +226,21 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
-    blocks = torch.zeros(len(layers), len(layers))
+    chain = torch.zeros(len(layers), len(layers))
     names = [layer.name for layer in layers]
     for a in order:   # blocking layers first, so their own obstacles are known: blocks chain
         for b in layers[a].blocks:
-            blocks[a, names.index(b)] = 1.0
-            blocks[a] = torch.maximum(blocks[a], blocks[names.index(b)])
+            chain[a, names.index(b)] = 1.0
+            chain[a] = torch.maximum(chain[a], chain[names.index(b)])
+    # a layer under directional forces rests on the layers it blocks on (their shadow);
+    # others see their ink
+    sweeps = tuple(sweep_of(layer.forces) for layer in layers)
+    resting = torch.tensor([s is not None for s in sweeps], dtype=chain.dtype)[:, None]
+    rests, blocks = chain * resting, chain * (1 - resting)
     # layers that share a container and do not block each other collide both ways
     for a in range(len(layers)):
         for b in range(a + 1, len(layers)):
-            if layers[a].region == layers[b].region and not (blocks[a, b] or blocks[b, a]):
+            if layers[a].region == layers[b].region and not (chain[a, b] or chain[b, a]):
                 blocks[a, b] = blocks[b, a] = 1.0
     norm = float((units.area * band ** 2 * unit_scale ** 2).sum()) * rho ** 2
     terms = CanvasTerms(
@@ -243,7 +248,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         outside=torch.stack([f[1] for f in fields]).to(dev),
         inside=torch.stack([f[0] if layer.boundary == "closed" and layer.fill is None
                             else torch.zeros_like(f[0]) for f, layer in zip(fields, layers)]).to(dev),
-        blocks=blocks.to(dev), norm=norm, w_fill=0.15 if free_scale else 0.0)
+        blocks=blocks.to(dev), rests=rests.to(dev) if rests.any() else None, sweeps=sweeps,
+        shape=grid.shape, norm=norm, w_fill=0.15 if free_scale else 0.0)
     generator = torch.Generator().manual_seed(int(seed))
     start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,

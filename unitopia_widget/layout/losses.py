@@ -4,7 +4,15 @@ Every layer has its own coverage slab ``C[a]`` (the sum of its marks' footprint
 alphas per raster pixel). A layer ``a`` that blocks on layers ``b`` sees their
 coverage as obstacles ``O[a] = sum_b C[b]`` with gradients stopped: one-way
 blocking (paper section 4.1.2). Layers that share a container and do not
-block each other see each other both ways, so they collide as one layer. With ``T = C + O``, per raster pixel:
+block each other see each other both ways, so they collide as one layer.
+
+Strata: a layer pulled by directional forces rests on the layers it blocks on,
+as sediment does. Its obstacle is then their ink swept along its force, the
+shadow ``cummax`` of ``min(sum_b C[b], 1)`` down the raster axis nearest the
+force (everything below the other layers' upper envelope, for a downward
+force), so its marks cannot sift into the gaps between larger marks. Layers
+pulled by a point force, or by no force, see the ink itself. With
+``T = C + O``, per raster pixel:
 
 * overlap     ``relu(T - 1)``                 (paper eq. 3 with tau = 1 on coverage)
 * containment ``alpha * field``               (a signed-distance penalty, eq. 4 improved)
@@ -26,6 +34,8 @@ from dataclasses import dataclass
 
 import torch
 
+from ..design.forces import DirectionalForce
+
 
 @dataclass
 class CanvasTerms:
@@ -34,7 +44,11 @@ class CanvasTerms:
     penalty: torch.Tensor      # (L, S) containment cost per unit alpha, 0 inside
     outside: torch.Tensor      # (L, S) share of each pixel outside the allowed region
     inside: torch.Tensor       # (L, S) fill target: container coverage on closed layers, 0 on open ones
-    blocks: torch.Tensor       # (L, L) float, blocks[a, b] = 1 when layer a treats b as obstacle
+    blocks: torch.Tensor       # (L, L) float, blocks[a, b] = 1 when layer a treats b's ink as obstacle
+    #: (L, L) float, rests[a, b] = 1 when layer a rests on b: b's ink swept along ``sweeps[a]``
+    rests: torch.Tensor | None = None
+    sweeps: tuple = ()         # per layer: (raster dim 0 rows / 1 columns, reversed) or None
+    shape: tuple = ()          # (H, W) raster pixels: the slabs' image shape
     norm: float = 1.0          # the marks' total footprint area in raster px^2, a constant normaliser
     w_overlap: float = 1.0
     w_contain: float = 1.0
@@ -58,7 +72,19 @@ class CanvasTerms:
     @functools.cached_property
     def has_obstacles(self) -> bool:
         """Whether some layer blocks on another (read once: the blocks are fixed)."""
-        return bool(self.blocks.any())
+        return bool(self.blocks.any()) or (self.rests is not None and bool(self.rests.any()))
+
+    def obstacles(self, own: torch.Tensor) -> torch.Tensor:
+        """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
+        on, and the shadow of those it rests on (see the module docstring)."""
+        obstacle = self.blocks.to(own) @ own
+        if self.rests is None:
+            return obstacle
+        resting = (self.rests.to(own) @ own).clamp_(max=1.0)
+        for a, sweep in enumerate(self.sweeps):
+            if sweep is not None and bool(self.rests[a].any()):
+                obstacle[a] += shadow(resting[a].view(self.shape), *sweep).reshape(-1)
+        return obstacle
 
     @property
     def stats(self) -> dict:
@@ -89,6 +115,26 @@ class CanvasTerms:
             fill = self.w_fill * inside / self.norm if self.w_fill else None
             self._tables = (fields, base, self.w_overlap / self.norm, fill)
         return self._tables
+
+
+def shadow(ink: torch.Tensor, dim: int, reverse: bool) -> torch.Tensor:
+    """``ink (H, W)`` swept along raster ``dim`` (towards higher indices, or lower when
+    ``reverse``): each pixel holds the most ink at or before it along the sweep."""
+    if reverse:
+        return torch.cummax(ink.flip(dim), dim)[0].flip(dim)
+    return torch.cummax(ink, dim)[0]
+
+
+def sweep_of(forces) -> tuple | None:
+    """The sweep (``shadow``'s ``dim, reverse``) of a layer pulled by ``forces``: the raster
+    axis nearest the sum of its directional forces; None with a point force or no pull."""
+    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
+        return None
+    vx = sum(f.strength * f.vector[0] for f in forces)
+    vy = sum(f.strength * f.vector[1] for f in forces)
+    if max(abs(vx), abs(vy)) < 1e-9:
+        return None
+    return (0, vy < 0) if abs(vy) >= abs(vx) else (1, vx < 0)
 
 
 def shares(sums, inside_total: float) -> dict:
@@ -124,7 +170,7 @@ class CanvasLoss(torch.autograd.Function):
         # contain, outside, inside . C and drawn alpha per layer: one pass over the slabs
         per = torch.bmm(fields, own[:, :, None])[..., 0]                       # (L, 4)
         if n_layers > 1 and terms.has_obstacles:
-            total = own + terms.blocks.to(own) @ own                            # T = C + O
+            total = own + terms.obstacles(own)                                  # T = C + O
             spill = torch.relu(total - 1.0)
             share = own / total.clamp_min(1e-6)
             excess = share * spill                                              # the layer's share

@@ -70,6 +70,17 @@ class Packing:
                 gap = np.hypot(*(self.points[near] - c).T) - r
                 self.clear[near] = np.minimum(self.clear[near], gap)
 
+    def stamp_swept(self, centers: np.ndarray, radii: np.ndarray, direction) -> None:
+        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` swept along the
+        unit vector ``direction`` without end: the room they shadow (see ``losses.shadow``)."""
+        if self.tree is None:
+            return
+        d = np.asarray(direction, dtype=float)
+        for c, r in zip(centers, radii):
+            rel = self.points - c
+            along = np.maximum(rel @ d, 0.0)[:, None]
+            np.minimum(self.clear, np.hypot(*(rel - along * d).T) - r, out=self.clear)
+
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
               largest_first: bool = True, roomiest: bool = False):
         """Centres ``(n, 2)`` for discs ``radii (n,)``, each at the cheapest spot that holds

@@ -13,7 +13,10 @@ Conventions
 Each mark renders into a small patch around its centre: the pixel centres are
 mapped through ``mark_from_canvas`` into sprite coordinates in ``[-1, 1]`` and
 sampled bilinearly with ``grid_sample`` (differentiable in centre, angle and
-extent). Marks that share a sprite level and patch size form one group and one
+extent). A mark wider than the largest patch side (``PATCH_SIDES[-1]``) is
+sampled at a stride: one sample per ``s x s`` block of raster pixels, copied to
+every pixel of the block, with ``s`` the least that fits the largest patch (its
+texels are then several pixels wide anyway, so little is lost). Marks that share a sprite level and patch size form one group and one
 ``grid_sample`` call. The result is a flat list of samples: alpha value and
 flat raster index, ready for ``index_add_``.
 """
@@ -97,15 +100,24 @@ class RasterGrid:
         return h * w
 
 
-def _patch_side(extent: np.ndarray) -> np.ndarray:
-    """Smallest entry of PATCH_SIDES >= extent (raster px), elementwise."""
+def _patch_side(extent: np.ndarray, stride=1) -> np.ndarray:
+    """Smallest entry of PATCH_SIDES >= extent / stride, times stride (raster px), elementwise.
+    ``stride``: see ``_stride``; 1 fits every extent up to the largest entry."""
     sides = np.asarray(PATCH_SIDES)
-    pos = np.searchsorted(sides, extent, side="left")
-    if (pos >= len(sides)).any():
-        raise ValueError(
-            f"a mark spans {float(extent.max()):.0f} raster pixels, more than the largest "
-            f"patch ({sides[-1]}); use fewer, smaller marks or a smaller canvas")
-    return sides[pos]
+    return sides[np.searchsorted(sides, np.asarray(extent) / stride, side="left")] * stride
+
+
+def _stride(ext_w: np.ndarray, ext_h: np.ndarray) -> np.ndarray:
+    """``(N,)`` int: the least sampling stride that fits each mark's longer extent
+    (raster px) within the largest patch side."""
+    return np.maximum(np.ceil(np.maximum(ext_w, ext_h) / PATCH_SIDES[-1]), 1).astype(int)
+
+
+def patch_stride(ph: int, pw: int) -> int:
+    """The sampling stride of a ``(ph, pw)`` patch: 1 up to the largest patch side, else the
+    least integer that brings the long side within it (``group_keys`` made both sides
+    multiples of it)."""
+    return max(1, -(-max(ph, pw) // PATCH_SIDES[-1]))
 
 
 def snap_rho(rho: float, half_w: np.ndarray, half_h: np.ndarray, rotating: bool,
@@ -125,7 +137,7 @@ def snap_rho(rho: float, half_w: np.ndarray, half_h: np.ndarray, rotating: bool,
         ext_w = (2 * reach if rotating else 2 * half_w) * r + 2.0
         ext_h = (2 * reach if rotating else 2 * half_h) * r + 2.0
         if max(ext_w.max(), ext_h.max()) > PATCH_SIDES[-1]:
-            return rho   # too large to plan here; plan_groups says why
+            return rho   # a strided patch: its sample count does not step with rho
         cost.append(float(np.sum(_patch_side(ext_w) * _patch_side(ext_h))))
     cost = np.asarray(cost)
     return float(candidates[cost <= 1.02 * cost.min()].max())
@@ -138,7 +150,8 @@ def group_keys(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
     radius = np.hypot(half_w, half_h) * rho
     ext_w = np.where(rotating, 2 * radius, 2 * half_w * rho) + 2.0
     ext_h = np.where(rotating, 2 * radius, 2 * half_h * rho) + 2.0
-    pw, ph = _patch_side(ext_w), _patch_side(ext_h)
+    stride = _stride(ext_w, ext_h)
+    pw, ph = _patch_side(ext_w, stride), _patch_side(ext_h, stride)
     sides = np.asarray(sprite_sides, dtype=float)[sprite_ids]
     # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
     level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
@@ -159,7 +172,7 @@ def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
     """
     key = group_keys(half_w, half_h, sprite_ids, sprite_sides, rotating, rho) if keys is None else keys
     # one integer per key (each column is small and non-negative): a 1-D unique is cheap
-    code = ((key[:, 0].astype(np.int64) * 64 + key[:, 1]) * 2048 + key[:, 2]) * 2048 + key[:, 3]
+    code = ((key[:, 0].astype(np.int64) * 64 + key[:, 1]) * 2 ** 20 + key[:, 2]) * 2 ** 20 + key[:, 3]
     uniq, first, inverse = np.unique(code, return_index=True, return_inverse=True)
     order = np.argsort(inverse, kind="stable")
     bounds = np.searchsorted(inverse[order], np.arange(len(uniq) + 1))
@@ -192,14 +205,16 @@ class RenderPlan:
 
 class _Part:
     """One ``grid_sample`` call: its marks ``idx (n,)``, sprite, level and patch ``(ph, pw)``,
-    with the patch's fixed tensors: pixel centres ``u (pw,)``, ``v (ph,)`` (raster px from
-    the patch origin), ``offsets (ph * pw,)`` int32 flat raster offsets, ``size`` and the
-    largest origin ``limit`` (x, y)."""
+    with the patch's fixed tensors: sample points ``u (pw / stride,)``, ``v (ph / stride,)``
+    (raster px from the patch origin: pixel centres, or the centres of ``stride x stride``
+    blocks, see ``patch_stride``), ``offsets (ph * pw,)`` int32 flat raster offsets, ``size``
+    and the largest origin ``limit`` (x, y)."""
 
     def __init__(self, idx, sprite, level, ph, pw, device, width, height):
         self.idx, self.sprite, self.level, self.ph, self.pw = idx, sprite, level, ph, pw
-        self.u = torch.arange(pw, device=device, dtype=torch.float32) + 0.5
-        self.v = torch.arange(ph, device=device, dtype=torch.float32) + 0.5
+        self.stride = s = patch_stride(ph, pw)
+        self.u = (torch.arange(pw // s, device=device, dtype=torch.float32) + 0.5) * s
+        self.v = (torch.arange(ph // s, device=device, dtype=torch.float32) + 0.5) * s
         rows, cols = torch.arange(ph, device=device), torch.arange(pw, device=device)
         self.offsets = (rows[:, None] * width + cols[None, :]).reshape(-1).to(torch.int32)
         self.size = torch.tensor([pw, ph], device=device, dtype=torch.float32)
@@ -263,8 +278,13 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
             sprite, sample_grid = pyramids[part.sprite][part.level], torch.stack([gx, gy]).permute(1, 2, 3, 0)
         else:   # part.sprite: (n,) the sprite of each mark, tiles of one texture
             sprite, sample_grid = plan.atlas.grid(part.level, part.sprite, gx, gy)
-        alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw, 2), mode="bilinear",
-                              padding_mode="zeros", align_corners=False)   # (1, 1, n*ph, pw)
+        alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw // part.stride, 2),
+                              mode="bilinear", padding_mode="zeros",
+                              align_corners=False)   # (1, 1, n*ph, pw) / stride
+        if part.stride > 1:   # each sample covers its block of stride x stride pixels
+            s = part.stride
+            alpha = alpha.reshape(-1, ph // s, pw // s).repeat_interleave(s, 1).repeat_interleave(s, 2)
+            alpha = alpha.reshape(1, 1, -1, pw)
         o = origin.to(torch.int32)
         if part.overhangs:
             # a patch larger than the raster overhangs it: drop the samples off the raster

@@ -19,6 +19,7 @@ from ..design.emitters import CurveEmitter, GridEmitter
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
+from .losses import sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
@@ -77,6 +78,11 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
+                if key in packings and sweep_of(layer.forces) is not None:
+                    # strata: the layers it rests on take the room below their tops
+                    below = [j for j in order[:order.index(i)] if resting(layers, i, j)]
+                    packings[key].stamp_swept(*_swept(s.center, radius, units.layer, below,
+                                                      sweep_of(layer.forces)))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas)
             except ValueError as exc:
@@ -165,6 +171,28 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
         return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
+
+
+def resting(layers, a: int, b: int) -> bool:
+    """Whether layer ``a`` blocks on layer ``b``, directly or through a chain of blocks."""
+    names = [layer.name for layer in layers]
+    seen, todo = set(), list(layers[a].blocks)
+    while todo:
+        name = todo.pop()
+        if name not in seen:
+            seen.add(name)
+            todo.extend(layers[names.index(name)].blocks)
+    return layers[b].name in seen
+
+
+def _swept(center, radius, layer_of, below, sweep):
+    """Discs ``(k, 2)``, ``(k,)`` of layers ``below`` and the canvas direction ``(2,)`` of
+    ``sweep`` (a raster axis, see ``losses.shadow``) along which they shadow the room."""
+    dim, reverse = sweep
+    direction = np.zeros(2)
+    direction[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
+    mine = np.isin(layer_of, below)
+    return center[mine], radius[mine], direction
 
 
 def _lengthwise(layer, units, idx) -> bool:
