@@ -61,7 +61,8 @@ def test_a_grid_emitter_with_a_direction_keeps_every_mark_inside():
                  container=uw.Container.rect(100, 50, 300, 300),
                  emitter=uw.GridEmitter(direction=90))
     table = c.layout()
-    assert discs_inside_rect(table, 100, 50, 400, 350, tol=3.0).all()   # a fifth of a radius
+    fifth = table["width"].iloc[0] / 10   # a fifth of a radius
+    assert discs_inside_rect(table, 100, 50, 400, 350, tol=fifth).all()
 
 
 def test_jammed_marks_move_into_the_room_of_a_closed_container():
