@@ -22,6 +22,7 @@ from ..output.export import to_png
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner
+from ..layout.solver import Cancelled
 
 STATIC = pathlib.Path(__file__).parent.parent / "static"
 
@@ -168,7 +169,8 @@ class UnitoPia(anywidget.AnyWidget):
     def run(self, wait: bool = False):
         """Lay out the marks. ``wait=True`` blocks and returns ``placements``;
         otherwise the layout runs in a thread and the widget animates it."""
-        self._runner.stop()  # a run while running restarts: the old one ends first
+        ticket = self._runner.request()   # a stop() from now on reaches this run
+        self._runner.end_current()  # a run while running restarts: the old one ends first
         self._chart.bind_check()
         self._push_units()
         self._frame_error = None
@@ -176,8 +178,10 @@ class UnitoPia(anywidget.AnyWidget):
             self.status, self.frame_count, self.stale = "running", 0, False
             self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None, "done": False}
         self._laid_out = _layout_key(self._chart.design())
-        self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error)
-        if wait:
+        if not self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error,
+                                  ticket=ticket):
+            self._on_done(None)   # stopped before it started
+        elif wait:
             try:
                 self._runner.wait()
             except KeyboardInterrupt:   # the notebook's stop button: end the run cleanly
@@ -187,8 +191,12 @@ class UnitoPia(anywidget.AnyWidget):
         return None
 
     def stop(self) -> None:
-        """Stop the running layout; the last frame becomes the layout (status "stopped")."""
-        self._runner.stop()
+        """Stop the running layout and any requested one; the last frame becomes the layout
+        (status "stopped"). Returns within ``STOP_PATIENCE`` s: a run still in a long setup
+        step is let go, and the last good layout stays."""
+        if not self._runner.stop(STOP_PATIENCE) or (
+                self.status == "running" and not self._runner.running):
+            self._on_done(None)
 
     def wait(self, timeout: float | None = None):
         """Wait for a running layout; re-raises its error. Returns ``placements``."""
@@ -201,7 +209,11 @@ class UnitoPia(anywidget.AnyWidget):
     def _job(self, on_frame, cancel):
         def progress(i, loss, stats):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss}
-        return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress)
+        try:
+            return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
+                                      abort=cancel)
+        except Cancelled:   # stopped before its first step: nothing to keep
+            return None
 
     def _on_frame(self, frame: np.ndarray) -> None:
         """Send a frame. One that cannot be sent (a closed comm, a ZMQError) ends the run:
@@ -218,9 +230,12 @@ class UnitoPia(anywidget.AnyWidget):
             self._runner.stop()   # from the layout thread: only asks the run to end
 
     def _on_done(self, table) -> None:
-        """The run ended: converged, stopped, or cut short by a frame that could not be sent."""
-        stopped = self._chart.result is not None and self._chart.result.cancelled
+        """The run ended: converged, stopped, or cut short by a frame that could not be sent;
+        ``table`` None: stopped before its first step, the last good layout is shown again."""
+        stopped = table is None or (self._chart.result is not None and self._chart.result.cancelled)
         final = {**self._progress, "done": True}
+        if table is None:
+            self._show_kept()
         if self._frame_error is not None:
             exc = self._frame_error
             self._quiet(progress=final)
@@ -260,12 +275,16 @@ class UnitoPia(anywidget.AnyWidget):
 
     def _on_run_error(self, exc: BaseException) -> None:
         """A failed run keeps the previous layout: show it again instead of the run's last frame."""
+        self._show_kept()
+        self._on_error(exc, source="run")
+
+    def _show_kept(self) -> None:
+        """Show the chart's layout (none before the first) instead of a run's last frame."""
         result, units = self._chart.result, self._chart._units
         keep = result is not None and units is not None and len(result.center) == len(units.rows)
         frame = (np.column_stack([result.center, result.angle, result.unit_scale])
                  .astype(np.float32).tobytes() if keep else b"")
         self._quiet(frame=frame)
-        self._on_error(exc, source="run")
 
     def _on_error(self, exc: BaseException, source: str = "run", prefix: str = "") -> None:
         """Show an error; it stays until an accepted edit (edit errors), a successful run
@@ -375,6 +394,8 @@ class UnitoPia(anywidget.AnyWidget):
         display(data, raw=True, metadata=metadata)
         self._static.show()
 
+
+STOP_PATIENCE = 0.25   # s stop() waits for a run to end before letting it go
 
 LAYOUT_FREE = ("title", "caption", "legend")   # design keys that do not change the layout
 
