@@ -368,3 +368,21 @@ def test_a_stop_before_the_first_step_keeps_no_half_layout(df):
     with pytest.raises(engine.Cancelled):
         chart.layout(abort=lambda: True)
     assert chart.placements is None
+
+
+def test_exports_during_a_run_are_refused_without_touching_the_run(df):
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=100000)
+    sent = []
+    w.send = lambda msg, buffers=None: sent.append(msg)
+    w.run()
+    poll(lambda: w.frame_count >= 1)
+    w._on_message(w, {"type": "export", "format": "svg"}, [])
+    assert w.status == "running" and w.error == ""      # Stop stays enabled
+    assert sent[-1]["type"] == "notice" and "Stop" in sent[-1]["text"]
+    with pytest.raises(RuntimeError, match=r"while the layout is running: call w\.wait\(\)"):
+        w.save("x.svg")
+    assert w.status == "running" and w.error == ""
+    w.stop()
+    assert w.status == "stopped"
+    w._on_message(w, {"type": "export", "format": "svg"}, [])
+    assert sent[-1]["type"] == "export" and 'class="unit"' in sent[-1]["data"]

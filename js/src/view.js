@@ -177,7 +177,10 @@ export function renderView({ model, el, signal }) {
     panels[3].update();
     redraw("marks");
   }, signal);
-  onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
+  onModel(model, ["msg:custom"], (msg) => {
+    if (msg && msg.type === "export") download(root, msg);
+    else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+  }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();
     redraw("scene", "over");

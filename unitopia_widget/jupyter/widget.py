@@ -8,6 +8,7 @@ import base64
 import copy
 import pathlib
 import threading
+import uuid
 import warnings
 
 import anywidget
@@ -77,11 +78,12 @@ class UnitoPia(anywidget.AnyWidget):
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend = t.Dict().tag(sync=True)                   #: {} or {"src": svg data URL, "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
+    _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
 
     def __init__(self, df: pd.DataFrame, **kwargs):
         check_kwargs("UnitoPia", kwargs, ARGUMENTS)
         chart = _SyncedChart(df, **kwargs)
-        super().__init__()
+        super().__init__(_session_id=uuid.uuid4().hex)
         self._chart = chart
         self._runner = Runner()
         self._applying = False
@@ -135,7 +137,11 @@ class UnitoPia(anywidget.AnyWidget):
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
         """``.svg``, ``.png`` or ``.json`` (the design, reload with ``UnitoPia.load``);
-        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``."""
+        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``. An image is refused
+        while a layout runs (the status stays): call ``wait()`` or ``stop()`` first."""
+        if self._runner.running and pathlib.Path(path).suffix.lower() != ".json":
+            raise RuntimeError(f"cannot save {str(path)[:200]!r} while the layout is running: "
+                               f"call w.wait() (or w.stop()) first, then save")
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline)
 
     title = property(lambda self: self._chart.title, lambda self, v: setattr(self._chart, "title", v),
@@ -369,6 +375,10 @@ class UnitoPia(anywidget.AnyWidget):
         self.send({"type": "icons", "query": query, "names": icons.search(query[:100])})
 
     def _export(self, fmt: str) -> None:
+        if self.status == "running":   # refused with a notice: the run and Stop go on
+            self.send({"type": "notice", "text": "Export waits for the layout: press it again "
+                                                 "when the run has ended (or press Stop first)."})
+            return
         svg = self._chart.to_svg()
         if fmt == "png":
             data = "data:image/png;base64," + base64.b64encode(

@@ -205,12 +205,15 @@ function translateContainer(c, dx, dy, canvas = [800, 500]) {
 }
 
 // src/model-sync.js
-var sessions = /* @__PURE__ */ new WeakMap();
+var byId = /* @__PURE__ */ new Map();
+var byProxy = /* @__PURE__ */ new WeakMap();
 function session(model) {
-  let s = sessions.get(model);
+  const id = model.get("_session_id");
+  const [map, key] = typeof id === "string" && id ? [byId, id] : [byProxy, model];
+  let s = map.get(key);
   if (!s) {
     s = { history: new History(), layer: 0, tool: "select", picked: null, bus: new EventTarget() };
-    sessions.set(model, s);
+    map.set(key, s);
   }
   return s;
 }
@@ -1712,7 +1715,10 @@ function createStatus(model, signal) {
     timer = setTimeout(showNotice, NO_ANSWER_MS);
   }
   function showNotice() {
-    notice.textContent = NO_KERNEL;
+    notify(NO_KERNEL);
+  }
+  function notify(message) {
+    notice.textContent = message;
     notice.hidden = false;
   }
   function answered() {
@@ -1733,7 +1739,7 @@ function createStatus(model, signal) {
     text.textContent = error;
     banner.hidden = !error || error === dismissed;
   }
-  return { el, banner, notice, update, run, answered };
+  return { el, banner, notice, update, run, answered, notify };
 }
 
 // src/panels/layers.js
@@ -2481,7 +2487,10 @@ function renderView({ model, el, signal }) {
     panels[3].update();
     redraw("marks");
   }, signal);
-  onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
+  onModel(model, ["msg:custom"], (msg) => {
+    if (msg && msg.type === "export") download(root, msg);
+    else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+  }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();
     redraw("scene", "over");

@@ -43,7 +43,11 @@ export function createStatus(model, signal) {
     timer = setTimeout(showNotice, NO_ANSWER_MS);
   }
   function showNotice() {
-    notice.textContent = NO_KERNEL;
+    notify(NO_KERNEL);
+  }
+  /** A notice from the kernel ({"type": "notice", "text"}), e.g. an export refused mid-run. */
+  function notify(message) {
+    notice.textContent = message;
     notice.hidden = false;
   }
 
@@ -68,5 +72,5 @@ export function createStatus(model, signal) {
     banner.hidden = !error || error === dismissed;
   }
 
-  return { el, banner, notice, update, run, answered };
+  return { el, banner, notice, update, run, answered, notify };
 }
