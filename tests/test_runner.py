@@ -283,7 +283,9 @@ def test_runs_requested_twice_from_the_front_end_leave_one_layout(df, solves):
     w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=20)
     w._on_message(w, {"type": "run"}, [])
     w._on_message(w, {"type": "run"}, [])
-    poll(lambda: len(solves) == 2 and not w._runner.running and w.status == "done")
+    # the first may be stopped in its setup, before any solve
+    poll(lambda: w._runner._requests == 2 and not w._runner.running and w.status == "done"
+         and w.frame_count > 0)
     finished = [r for _, r in solves if not r.cancelled]
     assert w._chart.result is solves[-1][1] and finished[-1] is w._chart.result
     assert_frame_is_layout(w)
@@ -319,3 +321,68 @@ def test_the_export_after_a_design_change_matches_the_layout_or_says_it_is_stale
         chart.to_svg()
     chart.layout(cancel=lambda: True)
     assert chart.to_svg().count('class="unit"') == 4
+
+
+def test_stop_reaches_a_restarted_run_through_the_message_handler(df, solves):
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=100000)
+    w._on_message(w, {"type": "run"}, [])
+    poll(lambda: w.frame_count >= 2)
+    w._on_message(w, {"type": "run"}, [])             # a restart: the old run ends first
+    poll(lambda: w._runner._requests == 2)            # the restart was asked for
+    for _ in range(3):
+        w._on_message(w, {"type": "stop"}, [])
+    poll(lambda: w.status == "stopped" and not w._runner.running and len(solves) >= 1)
+    time.sleep(0.3)                                   # a lost stop lets the new run go on
+    assert w.status == "stopped" and not w._runner.running
+    assert all(r.cancelled for _, r in solves)
+
+
+def test_stop_during_a_long_setup_step_returns_at_once_and_keeps_the_layout(df, monkeypatch):
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=20)
+    table = w.run(wait=True)
+    frame, inside, release = w.frame, threading.Event(), threading.Event()
+    real = engine.build_problem
+
+    def slow(*args, **kwargs):   # a setup step that does not look at cancel
+        inside.set()
+        release.wait(30)
+        return real(*args, **kwargs)
+    monkeypatch.setattr(engine, "build_problem", slow)
+    w.run()
+    assert inside.wait(30)
+    began = time.monotonic()
+    w.stop()
+    took = time.monotonic() - began
+    assert w.status == "stopped" and took < 0.5       # set by stop() itself, not the run's end
+    assert w.placements is table and w.frame == frame   # the last good layout stays
+    assert w.wait() is table
+    release.set()
+    poll(lambda: not any(t.is_alive() for t in w._runner._let_go))
+    assert w.status == "stopped" and w.placements is table and w.frame == frame
+    monkeypatch.undo()
+    assert w.run(wait=True) is not table and w.status == "done"
+
+
+def test_a_stop_before_the_first_step_keeps_no_half_layout(df):
+    chart = uw.Chart(df, size="v", mark=CIRCLE, iterations=20)
+    with pytest.raises(engine.Cancelled):
+        chart.layout(abort=lambda: True)
+    assert chart.placements is None
+
+
+def test_exports_during_a_run_are_refused_without_touching_the_run(df):
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=100000)
+    sent = []
+    w.send = lambda msg, buffers=None: sent.append(msg)
+    w.run()
+    poll(lambda: w.frame_count >= 1)
+    w._on_message(w, {"type": "export", "format": "svg"}, [])
+    assert w.status == "running" and w.error == ""      # Stop stays enabled
+    assert sent[-1]["type"] == "notice" and "Stop" in sent[-1]["text"]
+    with pytest.raises(RuntimeError, match=r"while the layout is running: call w\.wait\(\)"):
+        w.save("x.svg")
+    assert w.status == "running" and w.error == ""
+    w.stop()
+    assert w.status == "stopped"
+    w._on_message(w, {"type": "export", "format": "svg"}, [])
+    assert sent[-1]["type"] == "export" and 'class="unit"' in sent[-1]["data"]

@@ -229,13 +229,15 @@ class Chart:
         return units
 
     # --- layout -------------------------------------------------------------
-    def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3):
-        """Solve the layout now; returns the placements table and keeps it."""
+    def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3,
+               abort=None):
+        """Solve the layout now; returns the placements table and keeps it. ``abort()``
+        True during the setup raises ``Cancelled`` and keeps the previous layout."""
         self.bind_check()
         units, result, table = engine.layout(
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
             on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
-            scales=self.scales)
+            scales=self.scales, abort=abort)
         self._units, self.result, self.placements = units, result, table
         self._placed = units   # the units of the placements, kept when the design changes
         return table

@@ -1,17 +1,22 @@
 // The one place that reads and writes the model. Every edit is one
 // model.set("design", next) + model.save_changes(), recorded for undo.
 // State shared by every view of one model (history, current layer, tool, picked
-// object) lives in a per-model session, so a second view shows the same thing.
+// object) lives in a per-widget session, so a second view shows the same thing.
+// anywidget hands each render() a new model proxy, so the session is keyed by the
+// widget's `_session_id` trait (the proxy itself only where the trait is missing).
 import { History } from "./history.js";
 import { emptyDesign } from "./design-edit.js";
 
-const sessions = new WeakMap();
+const byId = new Map();
+const byProxy = new WeakMap();
 
 export function session(model) {
-  let s = sessions.get(model);
+  const id = model.get("_session_id");
+  const [map, key] = typeof id === "string" && id ? [byId, id] : [byProxy, model];
+  let s = map.get(key);
   if (!s) {
     s = { history: new History(), layer: 0, tool: "select", picked: null, bus: new EventTarget() };
-    sessions.set(model, s);
+    map.set(key, s);
   }
   return s;
 }

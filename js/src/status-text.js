@@ -2,10 +2,14 @@
 
 /**
  * The status word and its state: "running", "done", "stopped", "error", "idle"; a layout
- * made before the last edit ("stale") reads "changed: run again" instead of done/stopped.
+ * made before the last edit ("stale") reads "changed: run again" instead of done/stopped;
+ * `kernel` "gone" reads "no kernel" (a run it showed is not going on), "waiting" (Run sent,
+ * no answer yet) "waiting for the kernel".
  */
-export function statusLabel(status, stale) {
+export function statusLabel(status, stale, kernel = "live") {
   const s = ["idle", "running", "done", "stopped", "error"].includes(status) ? status : "idle";
+  if (kernel === "gone") return { text: "no kernel", state: "gone" };
+  if (kernel === "waiting" && s !== "running") return { text: "waiting for the kernel", state: "waiting" };
   if (stale && s !== "running" && s !== "error") return { text: "changed: run again", state: "stale" };
   return { text: s, state: s };
 }

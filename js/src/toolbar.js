@@ -21,9 +21,9 @@ export function createToolbar(view) {
     undo: action("undo", "Undo (Ctrl+Z)", "\u21b6", () => view.undo()),
     redo: action("redo", "Redo (Ctrl+Shift+Z)", "\u21b7", () => view.redo()),
     run: action("run", "Run the layout", "\u25b6 Run", () => view.run(), "ut-run"),
-    stop: action("stop", "Stop the layout", "\u25a0 Stop", () => model.send({ type: "stop" })),
-    svg: action("export-svg", "Export SVG", "SVG \u2913", () => model.send({ type: "export", format: "svg" })),
-    png: action("export-png", "Export PNG", "PNG \u2913", () => model.send({ type: "export", format: "png" })),
+    stop: action("stop", "Stop the layout", "\u25a0 Stop", () => view.send({ type: "stop" })),
+    svg: action("export-svg", "Export SVG", "SVG \u2913", () => view.send({ type: "export", format: "svg" })),
+    png: action("export-png", "Export PNG", "PNG \u2913", () => view.send({ type: "export", format: "png" })),
   };
   const eraser = h("input", { type: "range", min: "2", max: "80", value: "16", class: "ut-eraser", title: "Eraser width (canvas px)", "aria-label": "Eraser width" });
   const el = h(
@@ -43,7 +43,7 @@ export function createToolbar(view) {
     // focus out of the widget, and the next Ctrl+Z would go to the notebook instead.
     buttons.undo.setAttribute("aria-disabled", String(!s.history.canUndo));
     buttons.redo.setAttribute("aria-disabled", String(!s.history.canRedo));
-    const running = model.get("status") === "running";
+    const running = model.get("status") === "running" && view.kernel() !== "gone";
     buttons.stop.disabled = !running;
     buttons.run.classList.toggle("ut-busy", running);
   }

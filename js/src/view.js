@@ -68,6 +68,9 @@ export function renderView({ model, el, signal }) {
     },
     /** Run pressed: sent to the kernel, with a notice if nothing answers. */
     run: () => status.run(),
+    /** Sends a message to the kernel; false (shown in the notice) when there is none. */
+    send: (msg) => status.send(msg),
+    kernel: () => status.kernel(),
     redraw,
   };
 
@@ -78,7 +81,7 @@ export function renderView({ model, el, signal }) {
   }
 
   const toolbar = createToolbar(view);
-  const status = createStatus(model, signal);
+  const status = createStatus(model, signal, () => onStatus());
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
@@ -160,6 +163,7 @@ export function renderView({ model, el, signal }) {
     root.dataset.status = String(model.get("status") || "idle");
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
     root.dataset.stale = String(!!model.get("stale"));
+    root.dataset.kernel = status.kernel();
     status.update();
     toolbar.update();
   }
@@ -177,7 +181,10 @@ export function renderView({ model, el, signal }) {
     panels[3].update();
     redraw("marks");
   }, signal);
-  onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
+  onModel(model, ["msg:custom"], (msg) => {
+    if (msg && msg.type === "export") download(root, msg);
+    else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+  }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();
     redraw("scene", "over");

@@ -18,3 +18,9 @@ test("a finished run fills the progress bar", () => {
   assert.equal(progressBar({}).hidden, true);
   assert.equal(progressBar({ iteration: 3, max_iterations: 10, loss: 0.123456 }).detail, "iteration 3 / 10 \u00b7 loss 0.1235");
 });
+
+test("the kernel's state: gone reads no kernel, waiting reads waiting for the kernel", () => {
+  assert.deepEqual(statusLabel("running", false, "gone"), { text: "no kernel", state: "gone" });
+  assert.deepEqual(statusLabel("idle", false, "waiting"), { text: "waiting for the kernel", state: "waiting" });
+  assert.deepEqual(statusLabel("running", false, "waiting").state, "running");
+});

@@ -376,6 +376,17 @@ def test_export_reply_triggers_a_download(page):
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
+def test_an_export_refused_mid_run_shows_a_notice_and_keeps_stop(page):
+    mount(page)
+    page.evaluate("fake.push('status', 'running')")
+    page.click('[data-action="export-svg"]')
+    page.evaluate("fake.message({type: 'notice', text: 'Export waits for the layout'})")
+    notice = page.locator('[data-role="notice"]')
+    assert notice.is_visible() and notice.inner_text() == "Export waits for the layout"
+    assert page.locator(ROOT).get_attribute("data-status") == "running"
+    assert page.locator('[data-action="stop"]').is_enabled()
+
+
 # --- panels --------------------------------------------------------------------------
 
 def test_field_dropped_on_size_sets_the_encoding(page):

@@ -142,7 +142,8 @@ def test_run_without_a_kernel_says_so(page):
     page.click('[data-action="run"]')
     assert notice.is_hidden()
     notice.wait_for(state="visible", timeout=4000)
-    assert "Run needs a running kernel" in notice.inner_text()
+    assert "Waiting for the kernel" in notice.inner_text()   # busy, or not started
+    assert page.locator(".ut-status-word").text_content() == "waiting for the kernel"
     assert page.evaluate("fake.sent") == [{"type": "run"}]
     # With a kernel that answers, no notice.
     page.evaluate("fake.playPython()")
@@ -158,3 +159,24 @@ def test_run_says_so_at_once_when_the_message_cannot_be_sent(page):
     page.evaluate("() => { fake.send = () => { throw new Error('no comm'); }; }")
     page.click('[data-action="run"]')
     assert page.locator('[data-role="notice"]').is_visible()
+    assert "No kernel is connected" in page.locator('[data-role="notice"]').inner_text()
+
+
+def test_a_closed_comm_shows_no_kernel_and_stop_does_not_throw(page):
+    # A kernel restart mid-run: the model's comm closes, sending throws "Cannot send".
+    page.evaluate("() => unitopia.mount(Object.assign(unitopia.defaultState(), {status: 'running'}))")
+    page.wait_for_selector(ROOT)
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.evaluate("() => { fake.send = () => { throw new Error('Cannot send'); }; fake.emit('comm_live_update'); }")
+    assert page.locator(ROOT).get_attribute("data-kernel") == "gone"
+    assert page.locator(".ut-status-word").text_content() == "no kernel"
+    assert "No kernel is connected" in page.locator('[data-role="notice"]').inner_text()
+    page.locator('[data-action="stop"]').click(force=True)
+    page.locator('[data-action="export-svg"]').click()
+    page.wait_for_timeout(100)
+    assert errors == []
+    # the comm's own close event says the same without a probe
+    page.evaluate("() => unitopia.mount(Object.assign(unitopia.defaultState(), {status: 'running'}))")
+    page.evaluate("() => fake.emit('comm:close')")
+    assert page.locator(ROOT).get_attribute("data-kernel") == "gone"

@@ -3,6 +3,11 @@
 Starting a run while one is going cancels the old one first, so two runs
 started in a row leave exactly one layout, the second's. Frames reach
 ``on_frame`` at most ``fps`` times a second (the last frame always).
+
+``stop()`` reaches the current run and every run requested before it (a ``ticket``
+from ``request()`` that has not started yet never starts). A run that does not end
+within ``stop``'s patience (a long step of its setup) is let go: its callbacks are not
+called, and the next run waits for its thread before starting.
 """
 from __future__ import annotations
 
@@ -23,23 +28,37 @@ class Runner:
         self._starting = threading.Lock()   # concurrent start() calls (front-end messages) queue up
         self.generation = 0
         self.error: BaseException | None = None
+        self._requests = 0       # tickets handed out
+        self._stopped_upto = 0   # tickets up to this one were stopped
+        self._let_go: list[threading.Thread] = []   # runs stop() stopped waiting for
 
     @property
     def running(self) -> bool:
         return self._thread is not None and not self._ended.is_set()
 
-    def start(self, job: Callable, on_frame: Callable, on_done: Callable, on_error: Callable) -> None:
+    def request(self) -> int:
+        """A ticket for a run about to start; a ``stop()`` after it cancels that run."""
+        with self._lock:
+            self._requests += 1
+            return self._requests
+
+    def start(self, job: Callable, on_frame: Callable, on_done: Callable, on_error: Callable,
+              ticket: int | None = None) -> bool:
         """Run ``job(on_frame=..., cancel=...)`` in a thread, replacing any current run.
 
         ``on_done(result)`` or ``on_error(exc)`` is called from the thread, only
-        for the newest run.
+        for the newest run. Returns False (and runs nothing) when a ``stop()`` came after
+        ``ticket`` was handed out.
         """
+        ticket = self.request() if ticket is None else ticket
         with self._starting:
-            self._start(job, on_frame, on_done, on_error)
+            return self._start(job, on_frame, on_done, on_error, ticket)
 
-    def _start(self, job, on_frame, on_done, on_error) -> None:
-        self.stop()
+    def _start(self, job, on_frame, on_done, on_error, ticket) -> bool:
+        self.end_current()
         with self._lock:
+            if ticket <= self._stopped_upto:
+                return False
             self.generation += 1
             generation = self.generation
             cancel = self._cancel = threading.Event()
@@ -76,16 +95,39 @@ class Runner:
         thread = threading.Thread(target=work, name="unitopia-layout", daemon=True)
         thread.start()
         self._thread = thread   # started first: a concurrent stop() may join it at once
+        return True
 
-    def stop(self) -> None:
-        """Cancel the current run (it keeps its last frame) and wait for it to end."""
-        thread = self._thread
-        self._cancel.set()
-        if thread is not None and thread is not threading.current_thread():
-            # the run's own end signal: a join() cut short by a KeyboardInterrupt can leave
-            # CPython's thread state saying "ended" while the thread still finishes
-            self._ended.wait()
-            thread.join()
+    def stop(self, patience: float | None = None) -> bool:
+        """Cancel the current run (it keeps its last frame) and every requested one, and
+        wait up to ``patience`` s (None: until it ends). Returns False when the run was
+        let go instead: it had not ended, and none of its callbacks will be called."""
+        with self._lock:
+            self._stopped_upto = self._requests
+        return self.end_current(patience)
+
+    def end_current(self, patience: float | None = None) -> bool:
+        """Cancel the current run only (``stop`` without reaching requested ones); with
+        ``patience=None`` also wait for the runs let go before."""
+        with self._lock:
+            thread, ended = self._thread, self._ended
+            self._cancel.set()
+        if patience is None:
+            for old in self._let_go:
+                old.join()
+            self._let_go = []
+        if thread is None or thread is threading.current_thread():
+            return True
+        # the run's own end signal: a join() cut short by a KeyboardInterrupt can leave
+        # CPython's thread state saying "ended" while the thread still finishes
+        if not ended.wait(patience):
+            with self._lock:
+                if self._thread is thread:
+                    self.generation += 1   # its callbacks no longer match: it is let go
+                    self._thread = None
+                    self._let_go.append(thread)
+            return False
+        thread.join()
+        return True
 
     def wait(self, timeout: float | None = None) -> None:
         """Block until the current run ends; re-raise its error, if any."""

@@ -8,6 +8,7 @@ import base64
 import copy
 import pathlib
 import threading
+import uuid
 import warnings
 
 import anywidget
@@ -22,6 +23,7 @@ from ..output.export import to_png
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner
+from ..layout.solver import Cancelled
 
 STATIC = pathlib.Path(__file__).parent.parent / "static"
 
@@ -78,11 +80,12 @@ class UnitoPia(anywidget.AnyWidget):
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend = t.Dict().tag(sync=True)                   #: {} or {"src": svg data URL, "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
+    _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
 
     def __init__(self, df: pd.DataFrame, **kwargs):
         check_kwargs("UnitoPia", kwargs, ARGUMENTS)
         chart = _SyncedChart(df, **kwargs)
-        super().__init__()
+        super().__init__(_session_id=uuid.uuid4().hex)
         self._chart = chart
         self._runner = Runner()
         self._applying = False
@@ -136,7 +139,11 @@ class UnitoPia(anywidget.AnyWidget):
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
         """``.svg``, ``.png`` or ``.json`` (the design, reload with ``UnitoPia.load``);
-        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``."""
+        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``. An image is refused
+        while a layout runs (the status stays): call ``wait()`` or ``stop()`` first."""
+        if self._runner.running and pathlib.Path(path).suffix.lower() != ".json":
+            raise RuntimeError(f"cannot save {str(path)[:200]!r} while the layout is running: "
+                               f"call w.wait() (or w.stop()) first, then save")
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline)
 
     title = property(lambda self: self._chart.title, lambda self, v: setattr(self._chart, "title", v),
@@ -170,7 +177,8 @@ class UnitoPia(anywidget.AnyWidget):
     def run(self, wait: bool = False):
         """Lay out the marks. ``wait=True`` blocks and returns ``placements``;
         otherwise the layout runs in a thread and the widget animates it."""
-        self._runner.stop()  # a run while running restarts: the old one ends first
+        ticket = self._runner.request()   # a stop() from now on reaches this run
+        self._runner.end_current()  # a run while running restarts: the old one ends first
         self._chart.bind_check()
         self._push_units()
         self._frame_error = None
@@ -178,8 +186,10 @@ class UnitoPia(anywidget.AnyWidget):
             self.status, self.frame_count, self.stale = "running", 0, False
             self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None, "done": False}
         self._laid_out = _layout_key(self._chart.design())
-        self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error)
-        if wait:
+        if not self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error,
+                                  ticket=ticket):
+            self._on_done(None)   # stopped before it started
+        elif wait:
             try:
                 self._runner.wait()
             except KeyboardInterrupt:   # the notebook's stop button: end the run cleanly
@@ -189,8 +199,12 @@ class UnitoPia(anywidget.AnyWidget):
         return None
 
     def stop(self) -> None:
-        """Stop the running layout; the last frame becomes the layout (status "stopped")."""
-        self._runner.stop()
+        """Stop the running layout and any requested one; the last frame becomes the layout
+        (status "stopped"). Returns within ``STOP_PATIENCE`` s: a run still in a long setup
+        step is let go, and the last good layout stays."""
+        if not self._runner.stop(STOP_PATIENCE) or (
+                self.status == "running" and not self._runner.running):
+            self._on_done(None)
 
     def wait(self, timeout: float | None = None):
         """Wait for a running layout; re-raises its error. Returns ``placements``."""
@@ -203,7 +217,11 @@ class UnitoPia(anywidget.AnyWidget):
     def _job(self, on_frame, cancel):
         def progress(i, loss, stats):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss}
-        return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress)
+        try:
+            return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
+                                      abort=cancel)
+        except Cancelled:   # stopped before its first step: nothing to keep
+            return None
 
     def _on_frame(self, frame: np.ndarray) -> None:
         """Send a frame. One that cannot be sent (a closed comm, a ZMQError) ends the run:
@@ -220,9 +238,12 @@ class UnitoPia(anywidget.AnyWidget):
             self._runner.stop()   # from the layout thread: only asks the run to end
 
     def _on_done(self, table) -> None:
-        """The run ended: converged, stopped, or cut short by a frame that could not be sent."""
-        stopped = self._chart.result is not None and self._chart.result.cancelled
+        """The run ended: converged, stopped, or cut short by a frame that could not be sent;
+        ``table`` None: stopped before its first step, the last good layout is shown again."""
+        stopped = table is None or (self._chart.result is not None and self._chart.result.cancelled)
         final = {**self._progress, "done": True}
+        if table is None:
+            self._show_kept()
         if self._frame_error is not None:
             exc = self._frame_error
             self._quiet(progress=final)
@@ -262,12 +283,16 @@ class UnitoPia(anywidget.AnyWidget):
 
     def _on_run_error(self, exc: BaseException) -> None:
         """A failed run keeps the previous layout: show it again instead of the run's last frame."""
+        self._show_kept()
+        self._on_error(exc, source="run")
+
+    def _show_kept(self) -> None:
+        """Show the chart's layout (none before the first) instead of a run's last frame."""
         result, units = self._chart.result, self._chart._units
         keep = result is not None and units is not None and len(result.center) == len(units.rows)
         frame = (np.column_stack([result.center, result.angle, result.unit_scale])
                  .astype(np.float32).tobytes() if keep else b"")
         self._quiet(frame=frame)
-        self._on_error(exc, source="run")
 
     def _on_error(self, exc: BaseException, source: str = "run", prefix: str = "") -> None:
         """Show an error; it stays until an accepted edit (edit errors), a successful run
@@ -352,6 +377,10 @@ class UnitoPia(anywidget.AnyWidget):
         self.send({"type": "icons", "query": query, "names": icons.search(query[:100])})
 
     def _export(self, fmt: str) -> None:
+        if self.status == "running":   # refused with a notice: the run and Stop go on
+            self.send({"type": "notice", "text": "Export waits for the layout: press it again "
+                                                 "when the run has ended (or press Stop first)."})
+            return
         svg = self._chart.to_svg()
         if fmt == "png":
             data = "data:image/png;base64," + base64.b64encode(
@@ -377,6 +406,8 @@ class UnitoPia(anywidget.AnyWidget):
         display(data, raw=True, metadata=metadata)
         self._static.show()
 
+
+STOP_PATIENCE = 0.25   # s stop() waits for a run to end before letting it go
 
 LAYOUT_FREE = ("title", "caption", "legend")   # design keys that do not change the layout
 

@@ -26,7 +26,7 @@ from .losses import CanvasTerms, sweep_of
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
-from .solver import Problem, Result, solve
+from .solver import Cancelled, Problem, Result, solve
 from .start import any_angle, orientation_targets, packed_scales, start_positions
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
@@ -206,8 +206,10 @@ def _widest_disc(container, canvas) -> float:
 
 
 def build_problem(units: Units, layers, canvas, seed: int, device: str,
-                  max_iterations: int | None = None, scales: str = "shared") -> Problem:
-    """Assemble the solver's problem for ``units`` laid out by ``layers``."""
+                  max_iterations: int | None = None, scales: str = "shared",
+                  abort=None) -> Problem:
+    """Assemble the solver's problem for ``units`` laid out by ``layers``; ``abort()``
+    returning True between its steps raises ``Cancelled``."""
     order = block_order(layers)
     # each layer's widest disc, measured once for the start scale and the packed one
     caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
@@ -216,6 +218,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                                 scale_group, caps)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
+    _check(abort)
     band = footprint(units.margin)
     foot = np.hypot(units.half_w, units.half_h) * band * unit_scale
     r_mean = float(np.mean(foot))
@@ -226,6 +229,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
+    _check(abort)
     chain = torch.zeros(len(layers), len(layers))
     names = [layer.name for layer in layers]
     for a in order:   # blocking layers first, so their own obstacles are known: blocks chain
@@ -256,7 +260,9 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
     # one per distinct mark: a layer's units may draw different marks
+    _check(abort)
     pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
+    _check(abort)
     cap = max_iterations or max(layer.iterations for layer in layers)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}
@@ -275,6 +281,11 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    reach=_reach(units),
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers))
+
+
+def _check(abort) -> None:
+    if abort is not None and abort():
+        raise Cancelled("the layout was stopped during its setup")
 
 
 @functools.lru_cache(maxsize=64)
@@ -317,11 +328,19 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
 
 
 def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
-           on_progress=None, frame_every: int = 3, scales: str = "shared"):
-    """Bind, build and solve. Returns ``(units, result, placements DataFrame)``."""
+           on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None):
+    """Bind, build and solve. Returns ``(units, result, placements DataFrame)``.
+
+    ``cancel()`` returning True ends the solve, which keeps its last step (none taken: the
+    start). ``abort()`` (a Stop) returning True during the setup or before the first step
+    raises ``Cancelled``: there is no layout to keep."""
     units = bind(df, layers)
-    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales)
+    _check(abort)
+    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
+                            abort=abort)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every)
+    if result.iterations == 0 and abort is not None and abort():
+        raise Cancelled("the layout was stopped before its first step")
     table = placements(units, layers, result)
     return units, result, table

@@ -80,6 +80,10 @@ class Problem:
     device: str = "cpu"
 
 
+class Cancelled(Exception):
+    """A layout stopped before it had a step to keep."""
+
+
 @dataclass
 class Result:
     """Final transforms and quality; ``center (N, 2)``, ``angle (N,)`` degrees."""

@@ -206,12 +206,15 @@ function translateContainer(c, dx, dy, canvas = [800, 500]) {
 }
 
 // src/model-sync.js
-var sessions = /* @__PURE__ */ new WeakMap();
+var byId = /* @__PURE__ */ new Map();
+var byProxy = /* @__PURE__ */ new WeakMap();
 function session(model) {
-  let s = sessions.get(model);
+  const id = model.get("_session_id");
+  const [map, key] = typeof id === "string" && id ? [byId, id] : [byProxy, model];
+  let s = map.get(key);
   if (!s) {
     s = { history: new History(), layer: 0, tool: "select", picked: null, bus: new EventTarget() };
-    sessions.set(model, s);
+    map.set(key, s);
   }
   return s;
 }
@@ -1630,9 +1633,9 @@ function createToolbar(view) {
     undo: action("undo", "Undo (Ctrl+Z)", "↶", () => view.undo()),
     redo: action("redo", "Redo (Ctrl+Shift+Z)", "↷", () => view.redo()),
     run: action("run", "Run the layout", "▶ Run", () => view.run(), "ut-run"),
-    stop: action("stop", "Stop the layout", "■ Stop", () => model.send({ type: "stop" })),
-    svg: action("export-svg", "Export SVG", "SVG ⤓", () => model.send({ type: "export", format: "svg" })),
-    png: action("export-png", "Export PNG", "PNG ⤓", () => model.send({ type: "export", format: "png" }))
+    stop: action("stop", "Stop the layout", "■ Stop", () => view.send({ type: "stop" })),
+    svg: action("export-svg", "Export SVG", "SVG ⤓", () => view.send({ type: "export", format: "svg" })),
+    png: action("export-png", "Export PNG", "PNG ⤓", () => view.send({ type: "export", format: "png" }))
   };
   const eraser = h("input", { type: "range", min: "2", max: "80", value: "16", class: "ut-eraser", title: "Eraser width (canvas px)", "aria-label": "Eraser width" });
   const el = h(
@@ -1649,7 +1652,7 @@ function createToolbar(view) {
     for (const b of toolButtons) b.setAttribute("aria-pressed", String(b.dataset.tool === s.tool));
     buttons.undo.setAttribute("aria-disabled", String(!s.history.canUndo));
     buttons.redo.setAttribute("aria-disabled", String(!s.history.canRedo));
-    const running = model.get("status") === "running";
+    const running = model.get("status") === "running" && view.kernel() !== "gone";
     buttons.stop.disabled = !running;
     buttons.run.classList.toggle("ut-busy", running);
   }
@@ -1657,8 +1660,10 @@ function createToolbar(view) {
 }
 
 // src/status-text.js
-function statusLabel(status, stale) {
+function statusLabel(status, stale, kernel = "live") {
   const s = ["idle", "running", "done", "stopped", "error"].includes(status) ? status : "idle";
+  if (kernel === "gone") return { text: "no kernel", state: "gone" };
+  if (kernel === "waiting" && s !== "running") return { text: "waiting for the kernel", state: "waiting" };
   if (stale && s !== "running" && s !== "error") return { text: "changed: run again", state: "stale" };
   return { text: s, state: s };
 }
@@ -1674,8 +1679,10 @@ function progressBar(p) {
 
 // src/panels/status.js
 var NO_ANSWER_MS = 2e3;
-var NO_KERNEL = "Run needs a running kernel: nothing answered. Start the kernel and run the notebook's cells, then press Run again.";
-function createStatus(model, signal) {
+var WAITING = "Waiting for the kernel: it is busy (Run starts when it is free), or no kernel runs this notebook's cells yet.";
+var NO_KERNEL = "No kernel is connected to this view (it was restarted, shut down, or never started): run the notebook's cells again to get a live widget.";
+function createStatus(model, signal, onKernel = () => {
+}) {
   const word = h("span", { class: "ut-status-word" });
   const bar = h("progress", { class: "ut-progress", max: 1, value: 0 });
   const detail = h("span", { class: "ut-progress-text" });
@@ -1697,31 +1704,51 @@ function createStatus(model, signal) {
   const notice = h("div", { class: "ut-notice", dataset: { role: "notice" }, role: "status", hidden: true });
   let dismissed = null;
   let timer = 0;
+  let kernel = "live";
   signal.addEventListener("abort", () => clearTimeout(timer), { once: true });
   function send(msg) {
+    if (kernel === "gone") return gone(), false;
     try {
       model.send(msg);
       return true;
     } catch {
+      gone();
       return false;
     }
   }
   function run() {
     clearTimeout(timer);
     notice.hidden = true;
-    if (!send({ type: "run" })) return showNotice();
-    timer = setTimeout(showNotice, NO_ANSWER_MS);
+    if (!send({ type: "run" })) return;
+    timer = setTimeout(() => {
+      kernel = "waiting";
+      notify(WAITING);
+      onKernel();
+    }, NO_ANSWER_MS);
   }
-  function showNotice() {
-    notice.textContent = NO_KERNEL;
+  function gone() {
+    clearTimeout(timer);
+    kernel = "gone";
+    notify(NO_KERNEL);
+    onKernel();
+  }
+  const probe = () => kernel !== "gone" && send({ type: "ping" });
+  const closed = () => gone();
+  for (const [event, fn] of [["comm_live_update", probe], ["comm:close", closed], ["destroy", closed]]) {
+    model.on(event, fn);
+    signal.addEventListener("abort", () => model.off(event, fn), { once: true });
+  }
+  function notify(message) {
+    notice.textContent = message;
     notice.hidden = false;
   }
   function answered() {
     clearTimeout(timer);
     notice.hidden = true;
+    kernel = "live";
   }
   function update() {
-    const label = statusLabel(String(model.get("status") || "idle"), !!model.get("stale"));
+    const label = statusLabel(String(model.get("status") || "idle"), !!model.get("stale"), kernel);
     word.textContent = label.text;
     word.dataset.state = label.state;
     const p = progressBar(model.get("progress") || {});
@@ -1734,7 +1761,7 @@ function createStatus(model, signal) {
     text.textContent = error;
     banner.hidden = !error || error === dismissed;
   }
-  return { el, banner, notice, update, run, answered };
+  return { el, banner, notice, update, run, answered, notify, send, kernel: () => kernel };
 }
 
 // src/panels/layers.js
@@ -2380,6 +2407,9 @@ function renderView({ model, el, signal }) {
     },
     /** Run pressed: sent to the kernel, with a notice if nothing answers. */
     run: () => status.run(),
+    /** Sends a message to the kernel; false (shown in the notice) when there is none. */
+    send: (msg) => status.send(msg),
+    kernel: () => status.kernel(),
     redraw
   };
   function hitIndex() {
@@ -2388,7 +2418,7 @@ function renderView({ model, el, signal }) {
     return index;
   }
   const toolbar = createToolbar(view);
-  const status = createStatus(model, signal);
+  const status = createStatus(model, signal, () => onStatus());
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
@@ -2466,6 +2496,7 @@ function renderView({ model, el, signal }) {
     root.dataset.status = String(model.get("status") || "idle");
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
     root.dataset.stale = String(!!model.get("stale"));
+    root.dataset.kernel = status.kernel();
     status.update();
     toolbar.update();
   }
@@ -2482,7 +2513,10 @@ function renderView({ model, el, signal }) {
     panels[3].update();
     redraw("marks");
   }, signal);
-  onModel(model, ["msg:custom"], (msg) => msg && msg.type === "export" && download(root, msg), signal);
+  onModel(model, ["msg:custom"], (msg) => {
+    if (msg && msg.type === "export") download(root, msg);
+    else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+  }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();
     redraw("scene", "over");

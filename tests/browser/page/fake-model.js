@@ -138,19 +138,27 @@ export function defaultState() {
 }
 
 const views = [];
+let mounted = 0;
+
+/** A new proxy of `model` per call, as anywidget gives initialize() and each render(). */
+function proxy(model) {
+  const bound = (name) => (...args) => model[name](...args);   // a test may swap fake.send
+  return { get: bound("get"), set: bound("set"), save_changes: bound("save_changes"), send: bound("send"), on: bound("on"), off: bound("off") };
+}
 
 function mount(state = {}, { views: count = 1 } = {}) {
   unmount();
-  const model = new FakeModel({ ...defaultState(), ...state });
+  mounted += 1;   // each mount is a new widget: its own session
+  const model = new FakeModel({ ...defaultState(), _session_id: `widget-${mounted}`, ...state });
   window.fake = model;
-  widget.initialize({ model });
+  widget.initialize({ model: proxy(model) });
   const app = document.getElementById("app");
   for (let i = 0; i < count; i++) {
     const el = document.createElement("div");
     el.className = "view";
     app.append(el);
     const controller = new AbortController();
-    widget.render({ model, el, signal: controller.signal });
+    widget.render({ model: proxy(model), el, signal: controller.signal });
     views.push({ el, controller });
   }
   return model.listenerCount();
