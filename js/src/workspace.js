@@ -4,14 +4,14 @@
 import { h } from "./dom.js";
 
 /** Tools that edit the design; with any other (Select) the guides hide once marks are drawn. */
-export const EDITING = (tool) => typeof tool === "string" && tool !== "select";
+const editing = (tool) => typeof tool === "string" && tool !== "select";
 
 /**
  * Whether the overlay draws emitters and forces: always before a layout is drawn,
  * while an editing tool is active, or when the user asked for them (`shown`).
  */
 export function guidesVisible({ tool, hasFrame, shown }) {
-  return !hasFrame || EDITING(tool) || !!shown;
+  return !hasFrame || editing(tool) || !!shown;
 }
 
 /** Title above and caption below the stage; `update(design)` sets their text. */

@@ -2333,9 +2333,9 @@ function download(root, msg) {
 }
 
 // src/workspace.js
-var EDITING = (tool) => typeof tool === "string" && tool !== "select";
+var editing = (tool) => typeof tool === "string" && tool !== "select";
 function guidesVisible({ tool, hasFrame, shown }) {
-  return !hasFrame || EDITING(tool) || !!shown;
+  return !hasFrame || editing(tool) || !!shown;
 }
 function createPageText(wrap) {
   const title = h("div", { class: "ut-title", dataset: { role: "title" }, hidden: true });
