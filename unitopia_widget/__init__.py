@@ -16,9 +16,10 @@ from .design.emitters import CurveEmitter, GridEmitter  # noqa: E402
 from .design.forces import DirectionalForce, PointForce  # noqa: E402
 from .design.marks import Mark  # noqa: E402
 from .design.scene import Layer  # noqa: E402
+from .demo import demo_data  # noqa: E402
 
 __all__ = ["Chart", "Container", "CurveEmitter", "DirectionalForce", "GridEmitter", "Layer",
-           "Mark", "PointForce", "UnitoPia"]
+           "Mark", "PointForce", "UnitoPia", "demo_data"]
 __version__ = "0.1.0"
 
 

@@ -1,15 +1,16 @@
 // Paints what sits above the marks: emitters (grid: a hatched hint over the container;
 // curve: the Bezier with its control handles), forces (point: a dot; direction: an
-// arrow), the picked object's highlight, and the active tool's preview.
+// arrow), the picked object's highlight, and the active tool's preview. `guides`
+// false leaves out the emitters and forces (the finished marks show alone).
 import { containerPath, directionArrow, emitterPolyline, layerColor } from "./shapes.js";
 
-export function drawOverlay(ctx, { design, current, picked, unit, tool }) {
+export function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true }) {
   design.layers.forEach((layer, i) => {
     const active = i === current;
     ctx.globalAlpha = active ? 1 : 0.4;
     const color = layerColor(i);
-    drawEmitter(ctx, layer, design.canvas, color, active, unit);
-    (layer.forces || []).forEach((f, k) => {
+    if (guides) drawEmitter(ctx, layer, design.canvas, color, active, unit);
+    if (guides) (layer.forces || []).forEach((f, k) => {
       const hot = active && picked && picked.kind === "force" && picked.index === k;
       if (f.kind === "point") drawPoint(ctx, [f.x, f.y], color, hot, unit);
       else if (f.kind === "direction") {

@@ -2,6 +2,9 @@
 // "height"} in canvas px, drawn through <img>, never as markup) placed at
 // design.legend.position. Dragging it sets position [x, y] (its top-left corner in
 // canvas px, one commit on release); the toggle button sets design.legend.visible.
+// Beside the canvas it is drawn at its own size (1 canvas px = 1 CSS px, so its text
+// stays as legible as in the export however small the stage is); on the canvas, at the
+// chart's scale.
 import { h, listen } from "./dom.js";
 import { clampCorner, legendSettings, setLegend } from "./legend-place.js";
 
@@ -30,10 +33,10 @@ export function createLegend(view, signal) {
     if (!l) return void img.removeAttribute("src");
     if (img.getAttribute("src") !== l.src) img.src = l.src;
     const [w, hgt] = size(l);
-    const k = stage.scale;
+    const corner = drag ? drag.corner : Array.isArray(position) ? clampCorner(position, [w, hgt], stage.size) : null;
+    const k = corner ? stage.scale : 1;
     img.style.width = w ? `${w * k}px` : "";
     img.style.height = hgt ? `${hgt * k}px` : "";
-    const corner = drag ? drag.corner : Array.isArray(position) ? clampCorner(position, [w, hgt], stage.size) : null;
     if (corner) {
       if (img.parentNode !== stage.el) stage.el.append(img);
       img.style.left = `${corner[0] * k}px`;
@@ -63,6 +66,8 @@ export function createLegend(view, signal) {
     const start = cornerNow();
     drag = { pointer: [ev.clientX, ev.clientY], start, size: size(l), corner: null, stop: new AbortController() };
     drag.corner = clampCorner(start, drag.size, stage.size);
+    // The stage keeps its width while the legend leaves the row beside it (no rescale mid-drag).
+    stage.wrap.style.flex = `0 0 ${stage.wrap.clientWidth}px`;
     const opts = { signal: drag.stop.signal };
     window.addEventListener("pointermove", move, opts);
     window.addEventListener("pointerup", () => finish(true), opts);
@@ -81,6 +86,7 @@ export function createLegend(view, signal) {
     const { corner, stop } = drag;
     stop.abort();
     drag = null;
+    stage.wrap.style.flex = "";
     if (keep) view.commit(setLegend(view.design(), { position: corner }));
     else place();
   }

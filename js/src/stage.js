@@ -1,7 +1,8 @@
 // The drawing surface: a background <img> and three stacked canvases (containers,
 // marks, overlay of emitters/forces/handles) inside one element that takes the
 // pointer events (data-role="stage"). The logical size is design.canvas; the stage
-// shrinks to fit the cell's width and draws at devicePixelRatio.
+// takes the cell's width at the canvas's aspect ratio (no taller than most of the
+// window) and draws at devicePixelRatio.
 import { h, listen } from "./dom.js";
 
 export function createStage(signal) {
@@ -24,9 +25,9 @@ export function createStage(signal) {
   /** Sizes the canvases for a logical size; returns true when anything changed. */
   stage.layout = (size) => {
     const [W, H] = size;
-    wrap.style.maxWidth = `${W}px`; // never wider than the canvas: a legend beside it stays adjacent
     const avail = wrap.clientWidth || W;
-    const scale = Math.min(1, avail / W);
+    const tall = Math.max(240, 0.85 * (window.innerHeight || H)); // the whole stage stays in view
+    const scale = Math.min(avail / W, tall / H);
     const dpr = window.devicePixelRatio || 1;
     if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1]) return false;
     Object.assign(stage, { size: [W, H], scale, dpr });

@@ -20,6 +20,7 @@ import { createFieldsPanel } from "./panels/fields.js";
 import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
 import { download } from "./export.js";
+import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
 
 export function renderView({ model, el, signal }) {
   const s = session(model);
@@ -85,11 +86,15 @@ export function renderView({ model, el, signal }) {
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
+  const pageText = createPageText(stage.wrap);
+  const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
+  foldPanels(panels);
+  const toggles = createToggles(side, () => redraw("over"));
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, status.el),
     status.banner,
     status.notice,
-    h("div", { class: "ut-main" }, legend.area, h("div", { class: "ut-side" }, panels.map((p) => p.el))),
+    h("div", { class: "ut-main" }, legend.area, side),
   );
   el.append(root);
   signal.addEventListener("abort", () => {
@@ -114,7 +119,10 @@ export function renderView({ model, el, signal }) {
     if (interp.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
-    if (dirty.has("over")) drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool] });
+    if (dirty.has("over")) {
+      const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
+      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides });
+    }
     if (dirty.has("marks")) {
       const t0 = performance.now();
       const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
@@ -135,6 +143,7 @@ export function renderView({ model, el, signal }) {
       stage.bg.hidden = false;
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
+    pageText.update(design);
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -146,9 +155,10 @@ export function renderView({ model, el, signal }) {
   function onFrame() {
     const frame = decodeFloat32(model.get("frame"));
     stats.framesReceived++;
+    const had = view.hasFrame();
     interp.push(frame, performance.now());
     if (model.get("status") !== "running") interp.snap();
-    redraw("marks");
+    redraw(...(had === view.hasFrame() ? ["marks"] : ["marks", "over"])); // the guides hide once marks show
   }
   function onUnits() {
     units = decodeFloat32(model.get("units"));

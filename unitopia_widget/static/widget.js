@@ -317,9 +317,9 @@ function createStage(signal) {
   };
   stage.layout = (size) => {
     const [W, H] = size;
-    wrap.style.maxWidth = `${W}px`;
     const avail = wrap.clientWidth || W;
-    const scale = Math.min(1, avail / W);
+    const tall = Math.max(240, 0.85 * (window.innerHeight || H));
+    const scale = Math.min(avail / W, tall / H);
     const dpr = window.devicePixelRatio || 1;
     if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1]) return false;
     Object.assign(stage, { size: [W, H], scale, dpr });
@@ -1036,13 +1036,13 @@ function outlineCanvas(ctx, canvas, color) {
 }
 
 // src/draw-overlay.js
-function drawOverlay(ctx, { design, current, picked, unit, tool }) {
+function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true }) {
   design.layers.forEach((layer, i) => {
     const active = i === current;
     ctx.globalAlpha = active ? 1 : 0.4;
     const color = layerColor(i);
-    drawEmitter(ctx, layer, design.canvas, color, active, unit);
-    (layer.forces || []).forEach((f, k) => {
+    if (guides) drawEmitter(ctx, layer, design.canvas, color, active, unit);
+    if (guides) (layer.forces || []).forEach((f, k) => {
       const hot = active && picked && picked.kind === "force" && picked.index === k;
       if (f.kind === "point") drawPoint(ctx, [f.x, f.y], color, hot, unit);
       else if (f.kind === "direction") {
@@ -2280,10 +2280,10 @@ function createLegend(view, signal) {
     if (!l) return void img.removeAttribute("src");
     if (img.getAttribute("src") !== l.src) img.src = l.src;
     const [w, hgt] = size(l);
-    const k = stage.scale;
+    const corner = drag ? drag.corner : Array.isArray(position) ? clampCorner(position, [w, hgt], stage.size) : null;
+    const k = corner ? stage.scale : 1;
     img.style.width = w ? `${w * k}px` : "";
     img.style.height = hgt ? `${hgt * k}px` : "";
-    const corner = drag ? drag.corner : Array.isArray(position) ? clampCorner(position, [w, hgt], stage.size) : null;
     if (corner) {
       if (img.parentNode !== stage.el) stage.el.append(img);
       img.style.left = `${corner[0] * k}px`;
@@ -2308,6 +2308,7 @@ function createLegend(view, signal) {
     const start = cornerNow();
     drag = { pointer: [ev.clientX, ev.clientY], start, size: size(l), corner: null, stop: new AbortController() };
     drag.corner = clampCorner(start, drag.size, stage.size);
+    stage.wrap.style.flex = `0 0 ${stage.wrap.clientWidth}px`;
     const opts = { signal: drag.stop.signal };
     window.addEventListener("pointermove", move, opts);
     window.addEventListener("pointerup", () => finish(true), opts);
@@ -2324,6 +2325,7 @@ function createLegend(view, signal) {
     const { corner, stop } = drag;
     stop.abort();
     drag = null;
+    stage.wrap.style.flex = "";
     if (keep) view.commit(setLegend(view.design(), { position: corner }));
     else place();
   }
@@ -2356,6 +2358,72 @@ function download(root, msg) {
   a.click();
   a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 1e4);
+}
+
+// src/workspace.js
+var editing = (tool) => typeof tool === "string" && tool !== "select";
+function guidesVisible({ tool, hasFrame, shown }) {
+  return !hasFrame || editing(tool) || !!shown;
+}
+function createPageText(wrap) {
+  const title = h("div", { class: "ut-title", dataset: { role: "title" }, hidden: true });
+  const caption = h("div", { class: "ut-caption", dataset: { role: "caption" }, hidden: true });
+  wrap.prepend(title);
+  wrap.append(caption);
+  const set = (el, v) => {
+    const text = typeof v === "string" ? v : "";
+    el.textContent = text;
+    el.hidden = !text;
+  };
+  return { update: (design) => (set(title, design.title), set(caption, design.caption)) };
+}
+function foldPanels(panels) {
+  for (const p of panels) {
+    const header = p.el.querySelector("header");
+    const name = header.querySelector("h3").textContent;
+    const btn = h("button", {
+      type: "button",
+      class: "ut-btn ut-icon ut-fold",
+      dataset: { action: "fold" },
+      "aria-expanded": "true",
+      title: `Fold or unfold ${name}`,
+      "aria-label": `Fold or unfold ${name}`,
+      onclick: () => {
+        const folded = p.el.classList.toggle("ut-folded");
+        btn.setAttribute("aria-expanded", String(!folded));
+      }
+    }, "▾");
+    header.prepend(btn);
+  }
+}
+function createToggles(side, onGuides) {
+  let guides = false;
+  const panels = h("button", {
+    type: "button",
+    class: "ut-btn",
+    dataset: { action: "toggle-panels" },
+    "aria-pressed": "true",
+    title: "Show or hide the panels",
+    "aria-label": "Show or hide the panels",
+    onclick: () => {
+      side.hidden = !side.hidden;
+      panels.setAttribute("aria-pressed", String(!side.hidden));
+    }
+  }, "Panels");
+  const guide = h("button", {
+    type: "button",
+    class: "ut-btn",
+    dataset: { action: "toggle-guides" },
+    "aria-pressed": "false",
+    title: "Show the emitters and forces over the marks",
+    "aria-label": "Show the emitters and forces over the marks",
+    onclick: () => {
+      guides = !guides;
+      guide.setAttribute("aria-pressed", String(guides));
+      onGuides();
+    }
+  }, "Guides");
+  return { panels, guide, guidesShown: () => guides };
 }
 
 // src/view.js
@@ -2422,11 +2490,15 @@ function renderView({ model, el, signal }) {
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
+  const pageText = createPageText(stage.wrap);
+  const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
+  foldPanels(panels);
+  const toggles = createToggles(side, () => redraw("over"));
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, status.el),
     status.banner,
     status.notice,
-    h("div", { class: "ut-main" }, legend.area, h("div", { class: "ut-side" }, panels.map((p) => p.el)))
+    h("div", { class: "ut-main" }, legend.area, side)
   );
   el.append(root);
   signal.addEventListener("abort", () => {
@@ -2449,7 +2521,10 @@ function renderView({ model, el, signal }) {
     if (interp.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
-    if (dirty.has("over")) drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool] });
+    if (dirty.has("over")) {
+      const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
+      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides });
+    }
     if (dirty.has("marks")) {
       const t0 = performance.now();
       const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
@@ -2468,6 +2543,7 @@ function renderView({ model, el, signal }) {
       stage.bg.hidden = false;
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
+    pageText.update(design);
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -2479,9 +2555,10 @@ function renderView({ model, el, signal }) {
   function onFrame() {
     const frame = decodeFloat32(model.get("frame"));
     stats.framesReceived++;
+    const had = view.hasFrame();
     interp.push(frame, performance.now());
     if (model.get("status") !== "running") interp.snap();
-    redraw("marks");
+    redraw(...had === view.hasFrame() ? ["marks"] : ["marks", "over"]);
   }
   function onUnits() {
     units = decodeFloat32(model.get("units"));
