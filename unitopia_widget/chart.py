@@ -19,7 +19,7 @@ import pandas as pd
 from .layout import engine
 from .layout.frames import Frames
 from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
-from .output import animation
+from .output import animation, html
 from .output.export import to_png
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
@@ -308,7 +308,8 @@ class Chart:
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
              fps=None, seconds=None) -> None:
-        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x), ``.json`` (the design), or
+        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x), ``.json`` (the design),
+        ``.html`` (one page: the SVG with tooltips and a replay of the settling), or
         the last run's settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm`` (``fps`` frames a
         second for ``seconds``; default 20 and 3; video needs the ``[video]`` extra).
         ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
@@ -317,12 +318,15 @@ class Chart:
         if (fps is not None or seconds is not None) and ext not in animation.FORMATS:
             raise ValueError(f"save: fps and seconds are for an animation "
                              f"({', '.join(animation.FORMATS)}), not {ext!r}")
-        if ext in (".svg", ".png") + animation.FORMATS:
+        if ext in (".svg", ".png", ".html") + animation.FORMATS:
             svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
         if ext in animation.FORMATS:
             fps, seconds = animation.check_timing(fps, seconds)
             images = animation.render(self, svg, fps, seconds)
             _atomic_write(path, animation.write(path, images, fps))
+        elif ext == ".html":
+            title = self.page.title if title is None else title
+            _atomic_write(path, html.page(svg, title or None, html.replay(self)).encode())
         elif ext == ".svg":
             _atomic_write(path, svg.encode())
         elif ext == ".png":
@@ -330,7 +334,7 @@ class Chart:
         elif ext == ".json":
             _atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:
-            raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png, .json, .gif, .webp, .mp4 or .webm")
+            raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png, .json, .html, .gif, .webp, .mp4 or .webm")
 
     def design(self) -> dict:
         """The design JSON (docs/protocol.md)."""

@@ -135,7 +135,8 @@ class UnitoPia(anywidget.AnyWidget):
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
              fps=None, seconds=None) -> None:
         """``.svg``, ``.png``, ``.json`` (the design, reload with ``UnitoPia.load``), or the
-        settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``; see ``Chart.save``."""
+        settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``, or ``.html`` (one page with tooltips
+        and a replay); see ``Chart.save``."""
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline,
                          fps=fps, seconds=seconds)
 
