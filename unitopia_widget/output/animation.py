@@ -92,6 +92,7 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     back = back.convert("RGB")
     for f in range(len(frames)):
         im = back.copy()
+        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
         wh = np.rint(drawn[f]).astype(int)
         ang = np.rint(frames[f, :, 2]).astype(int) % 360
         xy = (frames[f, :, :2] - (vx, vy)) * scale
@@ -105,18 +106,20 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
                 if len(cache) > 50000:
                     cache.clear()
                 cache[(k, w, h, a)] = tile
-            rgb, alpha = tile
-            im.paste(rgb, (floor(x - rgb.width / 2 + 0.5), floor(y - rgb.height / 2 + 0.5)), alpha)
+            rgb, alpha, tw, th = tile
+            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
+            core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
         out.append(im)
     return out
 
 
-def _tile(sprite: Image.Image, w: int, h: int, angle: int) -> tuple[Image.Image, Image.Image]:
-    """The sprite at ``w`` x ``h`` px rotated ``angle`` degrees clockwise: (RGB, alpha)."""
+def _tile(sprite: Image.Image, w: int, h: int, angle: int) -> tuple:
+    """The sprite at ``w`` x ``h`` px rotated ``angle`` degrees clockwise: the pixel stores
+    of its RGB and alpha, and its width and height."""
     tile = sprite.resize((w, h), Image.BILINEAR)
     if angle:
         tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
-    return tile.convert("RGB"), tile.getchannel("A")
+    return tile.convert("RGB").im, tile.getchannel("A").im, tile.width, tile.height
 
 
 def write(path: str, images: list[Image.Image], fps: float) -> bytes:
