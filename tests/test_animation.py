@@ -1,6 +1,6 @@
 """Tests for unitopia_widget.output.animation and layout.frames: the settling kept and
 exported as GIF, WebP, MP4 and WebM whose last frame is the final layout."""
-import io
+import sys
 
 import numpy as np
 import pandas as pd
@@ -46,13 +46,13 @@ def test_chart_keeps_the_runs_frames(chart):
     assert np.abs(chart.frames[0, :, :2] - chart.frames[-1, :, :2]).max() > 5   # it moved
 
 
-@pytest.mark.parametrize("ext", [".gif", ".webp", ".mp4"])
+@pytest.mark.parametrize("ext", [".gif", ".webp", ".mp4", ".webm"])
 def test_last_frame_is_the_png_export(chart, tmp_path, ext):
-    if ext == ".mp4":
+    if ext in (".mp4", ".webm"):
         av = pytest.importorskip("av")
     path = tmp_path / f"settle{ext}"
     chart.save(path, fps=10, seconds=2.5)
-    if ext == ".mp4":
+    if ext in (".mp4", ".webm"):
         with av.open(str(path)) as box:
             images = [f.to_ndarray(format="rgb24") for f in box.decode(video=0)]
     else:
@@ -73,3 +73,9 @@ def test_bad_timing_and_missing_run_are_named(chart, tmp_path):
         chart.save(tmp_path / "a.png", fps=10)
     with pytest.raises(RuntimeError, match="run"):
         uw.Chart(pd.DataFrame({"v": [1.0]})).save(tmp_path / "a.gif")
+
+
+def test_video_without_pyav_names_the_extra(chart, tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "av", None)   # import av then raises ImportError
+    with pytest.raises(ImportError, match=r"unitopia-widget\[video\]"):
+        chart.save(tmp_path / "a.mp4", fps=10, seconds=2)
