@@ -238,10 +238,10 @@ class Chart:
         self.bind_check()
         kept = Frames()
 
-        def record(frame):
+        def record(frame, *final):   # the runner's callback also takes final=True
             kept.add(frame)
             if on_frame is not None:
-                on_frame(frame)
+                on_frame(frame, *final)
 
         units, result, table = engine.layout(
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
