@@ -7,5 +7,5 @@ if [ ! -x /usr/bin/chromium ]; then   # the browser tests drive Debian's Chromiu
   else sudo apt-get update -q && sudo apt-get install -y -q chromium; fi
 fi
 # constraints.txt pins torch to the CPU wheel these machines carry; the package itself accepts torch>=2.2
-python -m pip install -q -c constraints.txt -e ".[test,icons,bench]"
+python -m pip install -q -c constraints.txt -e ".[test,icons,bench,video]"
 npm --prefix js ci --no-audit --no-fund

@@ -17,7 +17,9 @@ import numpy as np
 import pandas as pd
 
 from .layout import engine
+from .layout.frames import Frames
 from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
+from .output import animation, html
 from .output.export import to_png
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
@@ -100,6 +102,7 @@ class Chart:
         self.layers: list[Layer] = []
         self.placements: pd.DataFrame | None = None
         self.result = None
+        self.frames = None   # (F, N, 4) the last run's frames, ending on its layout
         self._units = None
         if by is None:
             self.add_layer("layer-1", mark=_pick_mark(mark, None, shape), **opts)
@@ -231,14 +234,23 @@ class Chart:
     # --- layout -------------------------------------------------------------
     def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3,
                abort=None):
-        """Solve the layout now; returns the placements table and keeps it. ``abort()``
+        """Solve the layout now; returns the placements table and keeps it, and the
+        run's frames in ``frames`` (``(F, N, 4)``, see ``layout.frames``). ``abort()``
         True during the setup raises ``Cancelled`` and keeps the previous layout."""
         self.bind_check()
+        kept = Frames()
+
+        def record(frame, *final):   # the runner's callback also takes final=True
+            kept.add(frame)
+            if on_frame is not None:
+                on_frame(frame, *final)
+
         units, result, table = engine.layout(
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
-            on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
+            on_frame=record, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
             scales=self.scales, abort=abort)
         self._units, self.result, self.placements = units, result, table
+        self.frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
         self._placed = units   # the units of the placements, kept when the design changes
         return table
 
@@ -296,21 +308,35 @@ class Chart:
         svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
-    def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
-        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x) or ``.json`` (the design).
+    def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
+             fps=None, seconds=None) -> None:
+        """Write ``.svg`` (the chart), ``.png`` (rendered at 2x), ``.json`` (the design),
+        ``.html`` (one page: the SVG with tooltips and a replay of the settling), or
+        the last run's settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm`` (``fps`` frames a
+        second for ``seconds``; default 20 and 3; video needs the ``[video]`` extra).
         ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
-        if ext in (".svg", ".png"):
+        if (fps is not None or seconds is not None) and ext not in animation.FORMATS:
+            raise ValueError(f"save: fps and seconds are for an animation "
+                             f"({', '.join(animation.FORMATS)}), not {ext!r}")
+        if ext in (".svg", ".png", ".html") + animation.FORMATS:
             svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
-        if ext == ".svg":
+        if ext in animation.FORMATS:
+            fps, seconds = animation.check_timing(fps, seconds)
+            images = animation.render(self, svg, fps, seconds)
+            _atomic_write(path, animation.write(path, images, fps))
+        elif ext == ".html":
+            title = self.page.title if title is None else title
+            _atomic_write(path, html.page(svg, title or None, html.replay(self)).encode())
+        elif ext == ".svg":
             _atomic_write(path, svg.encode())
         elif ext == ".png":
             _atomic_write(path, to_png(svg, svg_size(svg), 2.0))
         elif ext == ".json":
             _atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:
-            raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png or .json")
+            raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png, .json, .html, .gif, .webp, .mp4 or .webm")
 
     def design(self) -> dict:
         """The design JSON (docs/protocol.md)."""

@@ -137,14 +137,17 @@ class UnitoPia(anywidget.AnyWidget):
         """The laid-out chart as SVG; see ``Chart.to_svg`` for the arguments."""
         return self._chart.to_svg(legend=legend, title=title, caption=caption, outline=outline)
 
-    def save(self, path, legend=None, title=None, caption=None, outline: bool = False) -> None:
-        """``.svg``, ``.png`` or ``.json`` (the design, reload with ``UnitoPia.load``);
-        ``legend``, ``title``, ``caption``, ``outline`` as for ``to_svg``. An image is refused
-        while a layout runs (the status stays): call ``wait()`` or ``stop()`` first."""
+    def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
+             fps=None, seconds=None) -> None:
+        """``.svg``, ``.png``, ``.json`` (the design, reload with ``UnitoPia.load``), or the
+        settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``, or ``.html`` (one page with tooltips
+        and a replay); see ``Chart.save``. Anything but ``.json`` is refused while a layout
+        runs (the status stays): call ``wait()`` or ``stop()`` first."""
         if self._runner.running and pathlib.Path(path).suffix.lower() != ".json":
             raise RuntimeError(f"cannot save {str(path)[:200]!r} while the layout is running: "
                                f"call w.wait() (or w.stop()) first, then save")
-        self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline)
+        self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline,
+                         fps=fps, seconds=seconds)
 
     title = property(lambda self: self._chart.title, lambda self, v: setattr(self._chart, "title", v),
                      doc="The chart's title, drawn above it in the export (None: none).")

@@ -1,0 +1,166 @@
+"""The settling as a film: GIF and WebP (Pillow), MP4 and WebM (PyAV, extra ``[video]``).
+
+Each distinct (layer, mark, colour) is rendered once from its vector art (resvg) at
+the largest size it reaches, then every frame composites the sprites, resized and
+rotated, over the page drawn without its units (background, outlines, legend,
+title). A frame's unit transform is the SVG export's: the mark's box centred on
+(x, y), rotated by the angle (degrees, clockwise on screen), scaled to its size.
+The last frame is the final layout.
+"""
+from __future__ import annotations
+
+import io
+import os
+import re
+from math import floor
+from numbers import Real
+
+import numpy as np
+from PIL import Image
+
+from ..io.svgsafe import SVG_NS
+from .export import png_array
+
+FORMATS = (".gif", ".webp", ".mp4", ".webm")
+VIDEO = {".mp4": ("libx264", {"preset": "veryfast", "crf": "20"}),
+         ".webm": ("libvpx-vp9", {"deadline": "realtime", "cpu-used": "8", "crf": "30", "b": "0"})}
+_UNIT = re.compile(r'<g class="unit"[^>]*><title>[^<]*</title><use href="#[^"]*"/></g>\n?')
+_VIEW = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
+
+
+def check_timing(fps, seconds) -> tuple[float, float]:
+    """``fps`` in (0, 60], ``seconds`` in (0, 60]; None: 20 fps, 3 s."""
+    fps = 20.0 if fps is None else fps
+    seconds = 3.0 if seconds is None else seconds
+    for name, v in (("fps", fps), ("seconds", seconds)):
+        if not isinstance(v, Real) or isinstance(v, bool) or not 0 < v <= 60:
+            raise ValueError(f"save: {name} must be a number in (0, 60], got {v!r:.40}")
+    return float(fps), float(seconds)
+
+
+def resample(frames: np.ndarray, count: int) -> np.ndarray:
+    """``(count, N, 4)``: ``frames`` ``(F, N, 4)`` interpolated at ``count`` even times,
+    the first and last kept exactly."""
+    t = np.linspace(0.0, len(frames) - 1, max(2, count))
+    lo = np.floor(t).astype(int)
+    hi = np.minimum(lo + 1, len(frames) - 1)
+    w = (t - lo)[:, None, None].astype(np.float32)
+    return frames[lo] * (1 - w) + frames[hi] * w
+
+
+def _sprite(fragment: str, def_id: str, box, size) -> Image.Image:
+    bw, bh = box
+    w, h = size
+    svg = (f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" width="{w}" '
+           f'height="{h}" viewBox="0 0 {bw:.6g} {bh:.6g}" preserveAspectRatio="none">'
+           f'<defs>{fragment}</defs><use href="#{def_id}"/></svg>')
+    return Image.fromarray(png_array(svg, (w, h)), "RGBA")
+
+
+def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[Image.Image]:
+    """The settling's frames as RGB images over white, ``scale`` px per canvas px.
+    ``svg``: the chart's export (its page without the units is the backdrop)."""
+    fps, seconds = check_timing(fps, seconds)
+    if chart.frames is None:
+        raise RuntimeError("no settling to animate: call run() (or run(wait=True)) first")
+    units, table = chart._placed, chart.placements
+    frames = resample(chart.frames, int(round(fps * seconds)))
+    vx, vy, vw, vh = (float(v) for v in _VIEW.search(svg).groups())
+    size = (max(1, int(round(vw * scale))), max(1, int(round(vh * scale))))
+    back = Image.new("RGBA", size, "white")
+    page = Image.fromarray(png_array(_UNIT.sub("", svg), (vw, vh), scale), "RGBA")
+    back.alpha_composite(page.resize(size) if page.size != size else page)
+    by_name = {layer.name: layer for layer in chart.layers}
+    keys = list(zip(table["layer"], table["mark"], units.colors))
+    ids, marks = {}, []
+    for key in keys:
+        if key not in ids:
+            ids[key] = len(ids)
+            marks.append(by_name[key[0]].marks[key[1]])
+    kind = np.array([ids[k] for k in keys])
+    # drawn size per frame and unit, output px
+    half = np.stack([units.half_w, units.half_h], axis=1)
+    drawn = 2 * half[None] * frames[:, :, 3:4] * scale              # (F, N, 2)
+    sprites = []
+    for k, mark in enumerate(marks):
+        big = drawn[:, kind == k].reshape(-1, 2).max(axis=0)
+        px = (max(1, int(np.ceil(big[0]))), max(1, int(np.ceil(big[1]))))
+        sprites.append(_sprite(mark.svg_fragment("m", keys[list(kind).index(k)][2]), "m",
+                               mark.box_size, px))
+    cache: dict = {}
+    out = []
+    back = back.convert("RGB")
+    for f in range(len(frames)):
+        im = back.copy()
+        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
+        wh = np.rint(drawn[f]).astype(int)
+        ang = np.rint(frames[f, :, 2]).astype(int) % 360
+        xy = (frames[f, :, :2] - (vx, vy)) * scale
+        for n, (k, w, h, a, x, y) in enumerate(zip(kind.tolist(), wh[:, 0].tolist(), wh[:, 1].tolist(),
+                                                    ang.tolist(), xy[:, 0].tolist(), xy[:, 1].tolist())):
+            if w < 1 or h < 1:
+                continue
+            tile = cache.get((k, w, h, a))
+            if tile is None:
+                tile = _tile(sprites[k], w, h, a)
+                if len(cache) > 50000:
+                    cache.clear()
+                cache[(k, w, h, a)] = tile
+            rgb, alpha, tw, th = tile
+            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
+            core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
+        out.append(im)
+    return out
+
+
+def _tile(sprite: Image.Image, w: int, h: int, angle: int) -> tuple:
+    """The sprite at ``w`` x ``h`` px rotated ``angle`` degrees clockwise: the pixel stores
+    of its RGB and alpha, and its width and height."""
+    tile = sprite.resize((w, h), Image.BILINEAR)
+    if angle:
+        tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
+    return tile.convert("RGB").im, tile.getchannel("A").im, tile.width, tile.height
+
+
+def write(path: str, images: list[Image.Image], fps: float) -> bytes:
+    """The encoded animation for ``path``'s extension (bytes; the caller writes them)."""
+    ext = os.path.splitext(path)[1].lower()
+    buf = io.BytesIO()
+    ms = max(10, int(round(1000 / fps)))
+    if ext == ".gif":   # one palette, the final layout's, for every frame: fast and steady
+        palette = images[-1].quantize(255, method=Image.Quantize.FASTOCTREE)
+        frames = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in images]
+        frames[0].save(buf, "GIF", save_all=True, append_images=frames[1:], duration=ms, loop=0)
+    elif ext == ".webp":
+        images[0].save(buf, "WEBP", save_all=True, append_images=images[1:], duration=ms, loop=0,
+                       quality=85, method=0)
+    elif ext in VIDEO:
+        _video(buf, ext, images, fps)
+    else:
+        raise ValueError(f"save: an animation is {', '.join(FORMATS)}; got {ext!r}")
+    return buf.getvalue()
+
+
+def _video(buf, ext: str, images, fps: float) -> None:
+    try:
+        import av
+    except ImportError:
+        raise ImportError(f"save: writing {ext} needs PyAV; install the extra: "
+                          f"pip install 'unitopia-widget[video]'") from None
+    from fractions import Fraction
+
+    codec, options = VIDEO[ext]
+    w, h = images[0].size
+    ew, eh = w + w % 2, h + h % 2   # yuv420p needs even sides
+    with av.open(buf, "w", format="mp4" if ext == ".mp4" else "webm") as box:
+        stream = box.add_stream(codec, rate=Fraction(fps).limit_denominator(1000), options=options)
+        stream.width, stream.height, stream.pix_fmt = ew, eh, "yuv420p"
+        for im in images:
+            if (ew, eh) != (w, h):
+                pad = Image.new("RGB", (ew, eh), "white")
+                pad.paste(im)
+                im = pad
+            for packet in stream.encode(av.VideoFrame.from_image(im)):
+                box.mux(packet)
+        for packet in stream.encode():
+            box.mux(packet)
