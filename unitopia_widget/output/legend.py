@@ -18,7 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..design.encodings import is_css_color, palette_for
+from ..design.encodings import (continuous_values, is_css_color, is_continuous, is_temporal,
+                                palette_for)
 from ..design.groups import sorted_categories
 from ..design.marks import Mark
 
@@ -26,6 +27,7 @@ FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)
 CHAR_W = 0.6         # text width per character, in font sizes (a safe over-estimate)
 LABEL_CHARS = 40     # labels longer than this are cut with an ellipsis
+MOST_ENTRIES = 20    # a section lists at most this many categories, then "... and n more"
 SWATCH = 16          # px, the long side of a colour or shape swatch and of the unit key's mark
 PAD = 8              # px between items
 BAR = (160, 12)      # px, numeric colour bar (w, h)
@@ -50,6 +52,15 @@ class Section:
     title: str
     entries: list = field(default_factory=list)
     bar: tuple | None = None  # numeric colour: (lo, hi), drawn as a gradient with tick entries
+    more: int = 0             # categories left out after the entries ("... and 9,990 more")
+
+
+def capped(sec: Section, most: int = MOST_ENTRIES) -> Section:
+    """``sec`` with its first ``most`` entries; the rest counted in ``sec.more``."""
+    if len(sec.entries) > most:
+        sec.more = len(sec.entries) - most
+        sec.entries = sec.entries[:most]
+    return sec
 
 
 def clip(text, limit: int = LABEL_CHARS) -> str:
@@ -82,6 +93,29 @@ def round_values(lo: float, hi: float, most: int = 4) -> list[float]:
 
 def _number(v: float) -> str:
     return f"{v:.6g}"
+
+
+def round_dates(lo: float, hi: float, most: int = 4) -> list[float]:
+    """2 to ``most`` tick times (seconds since 1970, UTC) in [lo, hi], at whole days,
+    months or years when the range allows, else spread evenly."""
+    start, end = pd.Timestamp(lo, unit="s"), pd.Timestamp(hi, unit="s")
+    for freq in ("YS", "QS", "MS", "7D", "D", "h", "min", "s"):
+        ticks = pd.date_range(start.ceil("s"), end, freq=freq)
+        if freq in ("7D", "D"):
+            ticks = pd.date_range(start.ceil("D"), end, freq=freq)
+        if 2 <= len(ticks) <= most:
+            return [t.value / 1e9 for t in ticks]
+        if len(ticks) > most:   # too many at this step: every k-th
+            step = -(-len(ticks) // most)
+            return [t.value / 1e9 for t in ticks[::step]]
+    return [lo] if not hi > lo else [lo, hi]
+
+
+def date_label(seconds: float, span: float) -> str:
+    """A tick time as a date ("2024-01-01"), with the time of day when ``span`` (s) is
+    under two days."""
+    t = pd.Timestamp(seconds, unit="s")
+    return t.strftime("%Y-%m-%d %H:%M" if span < 2 * 86400 else "%Y-%m-%d")
 
 
 def neutral(layer, units, i) -> str | None:
@@ -128,18 +162,23 @@ def _color_sections(rows, layers, units) -> list[Section]:
         # a category's colour on the layer's mark; a plain disc when the layer draws several
         mark = layers[users[0]].mark if len(layers[users[0]].marks) == 1 else _disc()
         series = rows[c][np.isin(units.layer, users)]
-        if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
-            v = series.to_numpy(dtype=float, na_value=np.nan)
+        if is_continuous(series):
+            v = continuous_values(series)
             v = v[np.isfinite(v)]
             lo, hi = float(v.min()), float(v.max())
-            ticks = round_values(lo, hi) if hi > lo else [lo]
-            sec = Section(f"Colour: {clip(c)}", bar=(lo, hi))
-            sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
+            sec = Section(f"Color: {clip(c)}", bar=(lo, hi))
+            if is_temporal(series):
+                sec.entries = [Entry("color", _number(t), date_label(t, hi - lo))
+                               for t in round_dates(lo, hi)]
+            else:
+                ticks = round_values(lo, hi) if hi > lo else [lo]
+                sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
         else:
             palette = palette_for(series)
-            sec = Section(f"Colour: {clip(c)}")
+            sec = Section(f"Color: {clip(c)}")
             sec.entries = [Entry("color", str(value), clip(value), mark, color, *_swatch(mark))
                            for value, color in palette.items()]
+            capped(sec)
         out.append(sec)
     return out
 
@@ -168,7 +207,7 @@ def _shape_sections(rows, layers, units) -> list[Section]:
             mark = layer.marks[units.mark[k]]
             color = units.colors[k] if same_colour else neutral(layer, units, i)
             sec.entries.append(Entry("shape", str(value), clip(value), mark, color, *_swatch(mark)))
-        out.append(sec)
+        out.append(capped(sec))
     return out
 
 

@@ -75,6 +75,12 @@ def _section(sec, defs: _Defs, x0: float, y0: float) -> tuple[list[str], float, 
         out.append(f'<g class="legend-entry"{attrs}>{body}</g>')
         width = max(width, mark_w + 6 + _text_w(e.label))
         y += row_h + PAD / 2
+    if sec.more:
+        more = f"\u2026 and {sec.more:,} more"
+        out.append(f'<text class="legend-more" x="{_n(x0)}" y="{_n(y + FONT)}" '
+                   f'font-size="{FONT}" {TEXT}>{escape(more)}</text>')
+        width = max(width, _text_w(more))
+        y += FONT + PAD / 2
     return out, width, y + PAD - y0
 
 

@@ -1,0 +1,72 @@
+"""Data conventions of the ecosystem: missing colour values, natural and Categorical order,
+many categories, datetime colour scales, the legend's name and its caps."""
+import warnings
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.design.encodings import CATEGORICAL, MISSING_COLOR, encode, sorted_unique
+
+SVG = "{http://www.w3.org/2000/svg}"
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+
+def colour_entries(svg):
+    return [g for g in ET.fromstring(svg).iter(f"{SVG}g")
+            if g.get("data-channel") == "color" and "legend-entry" in (g.get("class") or "")]
+
+
+def laid_out(df, **kwargs):
+    c = uw.Chart(df, iterations=20, container=uw.Container.rect(10, 10, 300, 200), **kwargs)
+    c.layout()
+    return c
+
+
+def test_categories_sort_naturally_and_a_categorical_keeps_its_order():
+    assert sorted_unique(pd.Series(["cat10", "cat2", "cat1", "cat2"])) == ["cat1", "cat2", "cat10"]
+    ordered = pd.Series(pd.Categorical(["low", "high", "mid"], categories=["low", "mid", "high"]))
+    assert sorted_unique(ordered) == ["low", "mid", "high"]
+    enc = encode(pd.DataFrame({"g": ["cat10", "cat2", "cat1"]}), color="g")
+    assert enc.colors == [CATEGORICAL[2], CATEGORICAL[1], CATEGORICAL[0]]
+
+
+def test_missing_colour_values_are_a_grey_category_listed_last_with_a_warning():
+    df = pd.DataFrame({"g": ["B", None, "A", np.nan, "B"]})
+    with pytest.warns(UserWarning, match=r"color='g': 2 of 5 rows are missing.*'missing'"):
+        c = laid_out(df, mark="circle", color="g")
+    colors = dict(zip(c._units.rows, c._units.colors))
+    assert colors[1] == colors[3] == MISSING_COLOR
+    assert [g.get("data-value") for g in colour_entries(c.to_svg())] == ["A", "B", "missing"]
+
+
+def test_twenty_categories_are_distinct_and_more_warn_naming_the_repeats():
+    assert len(set(CATEGORICAL)) >= 20
+    df = pd.DataFrame({"g": [f"k{i}" for i in range(23)]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        encode(df.iloc[:20], color="g")
+    with pytest.warns(UserWarning, match=r"23 categories but 20 distinct.*'k20', 'k21', 'k22'"):
+        encode(df, color="g")
+
+
+def test_the_legend_lists_the_first_categories_and_counts_the_rest():
+    df = pd.DataFrame({"g": [f"k{i}" for i in range(60)]})
+    with pytest.warns(UserWarning, match="60 categories"):
+        c = laid_out(df, mark="circle", color="g")
+    svg = c.to_svg()
+    assert len(colour_entries(svg)) == 20
+    more = [t for t in ET.fromstring(svg).iter(f"{SVG}text") if t.get("class") == "legend-more"]
+    assert more[0].text == "\u2026 and 40 more"
+
+
+def test_a_datetime_colour_is_a_continuous_scale_with_date_labels():
+    days = pd.Series(pd.date_range("2024-01-01", periods=20, freq="D"))
+    enc = encode(pd.DataFrame({"day": days}), color="day")
+    assert enc.colors[0] != enc.colors[10] and len(set(enc.colors)) == 20   # not a cycle of 10
+    c = laid_out(pd.DataFrame({"day": days}), mark="circle", color="day")
+    labels = [g.find(f"{SVG}text").text for g in colour_entries(c.to_svg())]
+    assert labels and all(len(s) == 10 and s.startswith("2024-01-") for s in labels), labels
+    assert 'class="legend-bar"' in c.to_svg()
