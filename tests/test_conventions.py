@@ -70,3 +70,37 @@ def test_a_datetime_colour_is_a_continuous_scale_with_date_labels():
     labels = [g.find(f"{SVG}text").text for g in colour_entries(c.to_svg())]
     assert labels and all(len(s) == 10 and s.startswith("2024-01-") for s in labels), labels
     assert 'class="legend-bar"' in c.to_svg()
+
+
+def test_shape_with_a_single_mark_is_an_error_that_says_so():
+    df = pd.DataFrame({"kind": ["a", "b", "a"]})
+    with pytest.raises(ValueError, match=r"shape='kind'.*single mark.*list of marks"):
+        uw.Chart(df, mark="circle", shape="kind").layout()
+
+
+def test_tooltip_picks_and_formats_columns_in_the_svg_and_the_widget():
+    df = pd.DataFrame({"Task": ["a", "b"], "Duration": [1.234, 5.0], "Secret": ["x", "y"]})
+    for tooltip in (["Task", ("Duration", ".1f")], {"Task": None, "Duration": ".1f"}):
+        c = laid_out(df, mark="circle", tooltip=tooltip)
+        tips = sorted(t.text for t in ET.fromstring(c.to_svg()).iter(f"{SVG}title"))
+        assert tips == ["Task: a\nDuration: 1.2", "Task: b\nDuration: 5.0"]
+    w = uw.UnitoPia(df, iterations=20, tooltip="Task")
+    w.run(wait=True)
+    assert sorted(w.titles) == ["Task: a", "Task: b"]
+    w.tooltip = [("Duration", ".2f")]
+    assert sorted(w.titles) == ["Duration: 1.23", "Duration: 5.00"]
+    with pytest.raises(ValueError, match=r"tooltip='Tsk': no such column"):
+        w.tooltip = ["Tsk"]
+    with pytest.raises(ValueError, match=r"tooltip: format '\.1f' does not apply to column 'Task'"):
+        uw.Chart(df, tooltip=[("Task", ".1f")])
+
+
+def test_legend_is_one_name_in_the_constructor_the_attribute_and_save(tmp_path):
+    df = pd.DataFrame({"g": ["a", "b"]})
+    w = uw.UnitoPia(df, color="g", legend="bottom", iterations=20)
+    assert w.legend == {"visible": True, "position": "bottom"}
+    w.legend = False
+    assert w.legend["visible"] is False and w.legend_image == {}
+    w.run(wait=True)
+    w.save(tmp_path / "x.svg", legend=True)
+    assert 'class="legend"' in (tmp_path / "x.svg").read_text()

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .layout import engine
-from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
+from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields
 from .output.export import to_png
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
@@ -28,7 +28,7 @@ from .design.validate import check_finite, closest
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
-             "legend")
+             "legend", "tooltip")
 SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
@@ -70,6 +70,8 @@ class Chart:
         self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
                                 True if opts.get("legend") is None else opts["legend"])
         opts.pop("legend", None)
+        self._tooltip = opts.pop("tooltip", None)
+        tooltip_fields(df, self._tooltip)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
         mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
@@ -243,7 +245,18 @@ class Chart:
     def titles(self, units=None) -> list[str]:
         """Tooltip text per unit, in unit order."""
         units = self._units if units is None else units
-        return row_titles(self.df.loc[units.rows])
+        return row_titles(self.df.loc[units.rows], self._tooltip)
+
+    @property
+    def tooltip(self):
+        """The ``tooltip=`` columns: None (every column), a list of columns and
+        ``(column, format)`` pairs, or a dict ``{column: format}``."""
+        return self._tooltip
+
+    @tooltip.setter
+    def tooltip(self, value):
+        tooltip_fields(self.df, value)
+        self._tooltip = value
 
     # --- title, caption, legend ------------------------------------------------------
     title = property(lambda self: self.page.title, doc="The chart's title (None: none).")

@@ -277,8 +277,46 @@ def rgba(colors: list) -> np.ndarray:
     return out
 
 
-def titles(df: pd.DataFrame) -> list[str]:
-    """One tooltip per row: ``column: value`` lines."""
-    cols = list(df.columns)
-    return ["\n".join(f"{c}: {v}" for c, v in zip(cols, row))
-            for row in df.itertuples(index=False, name=None)]
+def tooltip_fields(df: pd.DataFrame, tooltip=None) -> list[tuple]:
+    """``[(column, format or None), ...]`` of ``tooltip=``: None (every column), a list of
+    columns and ``(column, format)`` pairs, or a dict ``{column: format or None}``; formats
+    are Python format specs (".1f", ",d", "%Y-%m-%d" for dates). ValueError for a missing
+    column or a format its values do not take."""
+    if tooltip is None:
+        return [(c, None) for c in df.columns]
+    if isinstance(tooltip, str):
+        tooltip = [tooltip]
+    items = list(tooltip.items()) if isinstance(tooltip, dict) else \
+        [tuple(t) if isinstance(t, (list, tuple)) else (t, None) for t in tooltip]
+    fields = []
+    for item in items:
+        if len(item) != 2 or not (item[1] is None or isinstance(item[1], str)):
+            raise ValueError(f"tooltip: each entry must be a column or (column, format), got "
+                             f"{item!r}; e.g. tooltip=['Task', ('Duration', '.1f')]")
+        column, fmt = item
+        check_column(df, "tooltip", column)
+        if fmt is not None and len(df):
+            try:
+                _formatted(df[column].iloc[0], fmt)
+            except (ValueError, TypeError) as exc:
+                raise ValueError(f"tooltip: format {fmt!r} does not apply to column "
+                                 f"{column!r} (dtype {df[column].dtype}): {exc}") from None
+        fields.append((column, fmt))
+    return fields
+
+
+def _formatted(value, fmt) -> str:
+    if fmt is None or pd.isna(value):
+        return str(value)
+    return format(value, fmt)
+
+
+def titles(df: pd.DataFrame, tooltip=None) -> list[str]:
+    """One tooltip per row: ``column: value`` lines of the ``tooltip=`` columns (see
+    :func:`tooltip_fields`; default every column)."""
+    fields = tooltip_fields(df, tooltip)
+    if not fields:
+        return [""] * len(df)
+    cols = [df[c].tolist() for c, _ in fields]
+    return ["\n".join(f"{c}: {_formatted(v, fmt)}" for (c, fmt), v in zip(fields, row))
+            for row in zip(*cols)]
