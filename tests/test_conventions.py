@@ -104,3 +104,12 @@ def test_legend_is_one_name_in_the_constructor_the_attribute_and_save(tmp_path):
     w.run(wait=True)
     w.save(tmp_path / "x.svg", legend=True)
     assert 'class="legend"' in (tmp_path / "x.svg").read_text()
+
+
+def test_marks_drawn_under_two_pixels_warn_and_suggest_a_log_scale():
+    df = pd.DataFrame({"v": [1.0] * 5 + [30_000.0]})
+    with pytest.warns(UserWarning, match=r"5 of 6 marks are drawn under 2 px.*size='v'.*log"):
+        laid_out(df, mark="circle", size="v")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        laid_out(pd.DataFrame({"v": [1.0, 3.0, 5.0]}), mark="circle", size="v")

@@ -33,6 +33,7 @@ SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
+MIN_DRAWN = 2.0   # px: marks drawn narrower than this are hard to see, and warned about
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -240,6 +241,8 @@ class Chart:
             scales=self.scales)
         self._units, self.result, self.placements = units, result, table
         self._placed = units   # the units of the placements, kept when the design changes
+        if not result.cancelled:
+            _warn_small_marks(table, self.layers)
         return table
 
     def titles(self, units=None) -> list[str]:
@@ -455,6 +458,21 @@ def _pick_mark(mark, value, shape):
                              f"{list(mark)}")
         return mark[value] if value in mark else mark[str(value)]
     return mark
+
+
+def _warn_small_marks(table: pd.DataFrame, layers) -> None:
+    """Warn when the smallest laid-out marks are under ``MIN_DRAWN`` px across, naming the
+    size channels that spread them and what to do instead."""
+    side = np.minimum(table["width"].to_numpy(), table["height"].to_numpy())
+    if not len(side) or side.min() >= MIN_DRAWN:
+        return
+    bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
+                    for c in ("size", "width", "height") if isinstance(layer.encodings[c], str)})
+    small = int((side < MIN_DRAWN).sum())
+    spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
+    warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
+                  f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
+                  f"(np.log1p) or aggregate rows into fewer, larger marks", stacklevel=3)
 
 
 def _canvas(canvas) -> tuple[float, float]:
