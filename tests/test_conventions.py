@@ -113,3 +113,27 @@ def test_marks_drawn_under_two_pixels_warn_and_suggest_a_log_scale():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         laid_out(pd.DataFrame({"v": [1.0, 3.0, 5.0]}), mark="circle", size="v")
+
+
+def legend_titles(svg):
+    return [t.text for t in ET.fromstring(svg).iter(f"{SVG}text") if t.get("class") == "legend-title"]
+
+
+def test_layers_sharing_a_shape_legend_get_one_and_labels_hold_no_internal_names():
+    df = pd.DataFrame({"kind": ["a", "b"] * 4, "site": ["X"] * 4 + ["Y"] * 4})
+    c = laid_out(df, mark=["circle", "square"], shape="kind", by="site")
+    svg = c.to_svg()
+    assert [t for t in legend_titles(svg) if t.startswith("Shape")] == ["Shape: kind"]
+    one = laid_out(df, mark="circle", color="kind")
+    svg = one.to_svg()
+    legend = ET.fromstring(svg).find(f".//{SVG}g[@class='legend']")
+    text = " ".join(legend.itertext())
+    assert "layer-1" not in text and "Colour" not in text and "Color: kind" in legend_titles(svg)
+
+
+def test_the_legend_strip_is_as_wide_as_its_text():
+    from unitopia_widget.output import legend_draw
+    from PIL import ImageFont
+    font = ImageFont.truetype("DejaVuSans.ttf", 12)
+    for text in ("Duration (hours)", "iiiiiii", "WWW MMM", "cat10: 1,234 rows"):
+        assert legend_draw.text_width(text, 12) == pytest.approx(font.getlength(text), rel=0.03)

@@ -130,7 +130,9 @@ def _rows_label(layer) -> str:
     rows = layer.rows
     if rows is None:
         return ""
-    if "column" in rows:
+    if "column" in rows:   # a by= layer is named by its value: the column alone says the rest
+        if str(rows["value"]) == layer.name:
+            return f" ({clip(rows['column'], 20)})"
         return f" ({clip(rows['column'], 20)} = {clip(rows['value'], 20)})"
     return " (chosen rows)"
 
@@ -188,9 +190,10 @@ def _disc():
 
 
 def _shape_sections(rows, layers, units) -> list[Section]:
-    """One section per layer with ``shape=``: each category drawn with its own mark (in the
-    category's colour when colour encodes the same column, else the layer's key colour)."""
-    out = []
+    """One section per set of layers that draw the same categories with the same marks
+    under ``shape=`` (each category drawn with its mark, in the category's colour when
+    colour encodes the same column, else the layer's key colour)."""
+    found = []   # (column, {category: (mark, colour)}, [layer indices])
     for i, layer in enumerate(layers):
         c = layer.encodings["shape"]
         if not (isinstance(c, str) and c in rows.columns):
@@ -200,15 +203,32 @@ def _shape_sections(rows, layers, units) -> list[Section]:
         for k, value in zip(mine, rows[c].to_numpy()[mine]):
             first.setdefault(value, k)
         same_colour = layer.encodings["color"] == c
-        title = f"Shape: {clip(c)}" + (f" (layer {clip(layer.name, 20)})" if len(layers) > 1 else "")
-        sec = Section(title)
-        for value in sorted_categories(pd.Series(list(first))):
-            k = first[value]
-            mark = layer.marks[units.mark[k]]
-            color = units.colors[k] if same_colour else neutral(layer, units, i)
+        drawn = {value: (layer.marks[units.mark[k]],
+                         units.colors[k] if same_colour else neutral(layer, units, i))
+                 for value, k in first.items()}
+        for column, seen, users in found:
+            if column == c and all(seen.get(v, d) == d for v, d in drawn.items()):
+                seen.update(drawn)
+                users.append(i)
+                break
+        else:
+            found.append((c, drawn, [i]))
+    out = []
+    for c, drawn, users in found:
+        sec = Section(f"Shape: {clip(c)}" + _layers_note(layers, users))
+        for value in sorted_categories(pd.Series(list(drawn))):
+            mark, color = drawn[value]
             sec.entries.append(Entry("shape", str(value), clip(value), mark, color, *_swatch(mark)))
         out.append(capped(sec))
     return out
+
+
+def _layers_note(layers, users) -> str:
+    """`` (layer a)`` or `` (layers a, b)`` when a section holds some of several layers."""
+    if len(users) == len(layers):
+        return ""
+    names = [clip(layers[i].name, 20) for i in users]
+    return f" (layer{'s' if len(names) > 1 else ''} {', '.join(names)})"
 
 
 def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
@@ -234,13 +254,7 @@ def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
             else:
                 groups.append([item])
         for g in groups:
-            names = [clip(layers[i].name, 20) for i, _, _ in g]
-            if len(g) > 1:
-                note = f" (sizes shared across layers {', '.join(names)})"
-            elif len(found) > 1 or len(layers) > 1 and len(groups) > 1:
-                note = f" (layer {names[0]})"
-            else:
-                note = ""
+            note = _layers_note(layers, [i for i, _, _ in g])
             i, per_value, _ = g[0]
             mark, color = layers[i].mark, neutral(layers[i], units, i)
             values = np.concatenate([v for _, _, v in g])
@@ -261,9 +275,12 @@ def _unit_key(layers, units) -> Section:
     for i, layer in enumerate(layers):
         count = int((units.layer == i).sum())
         color = neutral(layer, units, i)
+        # channels that have no section of their own (color, shape and size do)
         bound = [f"{k}: {clip(v, 20)}" for k, v in layer.encodings.items()
-                 if isinstance(v, str) and not (k == "color" and is_css_color(v))]
-        label = f"{clip(layer.name, 30)}{_rows_label(layer)}: {count} rows"
+                 if isinstance(v, str) and k not in ("color", "shape", "size")]
+        # one layer: its name (an internal "layer-1") says nothing the title does not
+        named = f"{clip(layer.name, 30)}{_rows_label(layer)}: " if len(layers) > 1 else ""
+        label = f"{named}{count} rows"
         if bound:
             label += " \u00b7 " + ", ".join(bound)
         sec.entries.append(Entry(None, layer.name[:200], label, layer.mark, color,
