@@ -137,3 +137,42 @@ def test_the_legend_strip_is_as_wide_as_its_text():
     font = ImageFont.truetype("DejaVuSans.ttf", 12)
     for text in ("Duration (hours)", "iiiiiii", "WWW MMM", "cat10: 1,234 rows"):
         assert legend_draw.text_width(text, 12) == pytest.approx(font.getlength(text), rel=0.03)
+
+
+@pytest.fixture(scope="module")
+def sketched():
+    """A small chart with a drawn polygon container and a sketched mark, laid out briefly."""
+    df = pd.DataFrame({"v": [1.0, 2.0, 3.0, 4.0], "g": ["a", "b", "a", "b"]})
+    mark = uw.Mark.sketch([[[0, 0], [10, 12], [20, 0]], [[0, 5], [20, 5]]])
+    c = uw.Chart(df, mark=mark, size="v", color="g", iterations=20, seed=3, title="T",
+                 container=uw.Container.polygon([[50, 50], [400, 60], [300, 400], [60, 300]]))
+    c.layout()
+    return df, c
+
+
+def test_to_code_rebuilds_the_same_design_and_placements(sketched):
+    df, c = sketched
+    code = c.to_code()
+    assert "uw.Chart.from_design(df, design)" in code and "'sketch'" in code
+    scope = {"df": df}
+    exec(code, scope)
+    rebuilt = scope["chart"]
+    assert rebuilt.design() == c.design()
+    rebuilt.layout()
+    pd.testing.assert_frame_equal(rebuilt.placements, c.placements)
+    with pytest.raises(ValueError, match="df_name must be a Python identifier"):
+        c.to_code("my df")
+
+
+def test_chart_load_reads_a_saved_design(sketched, tmp_path):
+    df, c = sketched
+    c.save(tmp_path / "d.json")
+    assert uw.Chart.load(tmp_path / "d.json", df).design() == c.design()
+
+
+def test_the_widget_copies_its_design_as_code(sketched):
+    df, c = sketched
+    w = uw.UnitoPia.from_design(df, c.design())
+    scope = {"df": df}
+    exec(w.to_code(), scope)
+    assert scope["w"].design == w.design == c.design()

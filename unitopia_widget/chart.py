@@ -7,6 +7,7 @@ a front end.
 from __future__ import annotations
 
 import json
+import pprint
 import os
 import re
 import tempfile
@@ -333,6 +334,25 @@ class Chart:
                 "seed": self.seed, "scales": self.scales, **self.page.to_json(),
                 "layers": [layer.to_json() for layer in self.layers]}
 
+    @classmethod
+    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "Chart":
+        """A chart of ``df`` with ``design`` (a design JSON dict, as ``design()`` returns);
+        ``kwargs`` as for the constructor (tooltip, device, ...)."""
+        kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
+        chart = cls(df, **kwargs)
+        chart.apply_design(design)
+        return chart
+
+    @classmethod
+    def load(cls, path, df: pd.DataFrame, **kwargs) -> "Chart":
+        """A chart of ``df`` with the design saved at ``path`` (``save("x.json")``)."""
+        return cls.from_design(df, load_design(path), **kwargs)
+
+    def to_code(self, df_name: str = "df") -> str:
+        """Python source that rebuilds this design (sketched containers and marks included,
+        as their stroke lists and polygons) for the DataFrame named ``df_name``."""
+        return design_code(self.design(), f"uw.{type(self).__name__}", df_name)
+
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
@@ -378,6 +398,17 @@ def svg_size(svg: str) -> tuple[float, float]:
     """(width, height) of the root of an exported SVG."""
     m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
     return float(m.group(1)), float(m.group(2))
+
+
+def design_code(design: dict, factory: str, df_name: str = "df", var: str = "chart") -> str:
+    """Python source that sets ``var = factory.from_design(df_name, design)`` with the
+    design written out as a Python literal (plain lists, dicts, numbers and text)."""
+    if not df_name.isidentifier():
+        raise ValueError(f"df_name must be a Python identifier, got {df_name!r:.60}")
+    plain = json.loads(json.dumps(design))   # numpy scalars and tuples as Python literals
+    literal = pprint.pformat(plain, indent=1, width=96, sort_dicts=False)
+    return (f"import unitopia_widget as uw\n\ndesign = {literal}\n"
+            f"{var} = {factory}.from_design({df_name}, design)\n")
 
 
 def load_design(path) -> dict:

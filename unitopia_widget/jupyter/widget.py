@@ -16,7 +16,7 @@ import pandas as pd
 import traitlets as t
 
 from ..design import icons
-from ..chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
+from ..chart import ARGUMENTS, Chart, check_kwargs, design_code, load_design, svg_size
 from ..design.encodings import rgba
 from ..output.export import to_png
 from .notebook import StaticDisplay
@@ -172,11 +172,20 @@ class UnitoPia(anywidget.AnyWidget):
     @classmethod
     def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
         """A widget for ``df`` with the design saved at ``path``."""
-        design = load_design(path)
+        return cls.from_design(df, load_design(path), **kwargs)
+
+    @classmethod
+    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":
+        """A widget for ``df`` with ``design`` (a design JSON dict, as ``w.design``)."""
         kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
         w = cls(df, **kwargs)
         w._chart.apply_design(design)
         return w
+
+    def to_code(self, df_name: str = "df") -> str:
+        """Python source that rebuilds the current design, sketched containers and marks
+        included (as their stroke lists and polygons), for the DataFrame named ``df_name``."""
+        return design_code(self._chart.design(), "uw.UnitoPia", df_name, var="w")
 
     # --- running ------------------------------------------------------------
     def run(self, wait: bool = False):
