@@ -103,8 +103,8 @@ def test_size_factors_have_mean_one():
 def test_categorical_palette_in_sorted_order():
     assert palette_for(["b", "a", "c", "a"]) == {"a": CATEGORICAL[0], "b": CATEGORICAL[1],
                                                  "c": CATEGORICAL[2]}
-    many = palette_for(range(12))
-    assert many[10] == CATEGORICAL[0] and many[11] == CATEGORICAL[1]   # the palette cycles
+    many = palette_for(range(22))
+    assert many[20] == CATEGORICAL[0] and many[21] == CATEGORICAL[1]   # the palette cycles
 
 
 def test_categorical_colours_agree_across_layers_made_by_by(tasks):

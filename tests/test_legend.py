@@ -68,7 +68,8 @@ def test_size_legend_is_area_true_against_the_units(chart):
     for g, v in zip(sizes, values):
         sx, sy = scale_of(g.find(f"{SVG}use").get("transform"))
         assert sx * sy * bw * bh / v == pytest.approx(np.median(per_value), rel=0.05)
-    assert "sizes shared across layers 2024, 2025" in svg
+    titles = [t.text for t in ET.fromstring(svg).iter(f"{SVG}text") if t.get("class") == "legend-title"]
+    assert [t for t in titles if t.startswith("Size")] == ["Size: Duration (area)"]  # one, all layers
 
 
 def test_unit_key_counts_rows_and_names_each_layer(chart):
@@ -78,8 +79,8 @@ def test_unit_key_counts_rows_and_names_each_layer(chart):
     assert [g.get("data-value") for g in keys] == ["2024", "2025"]
     counts = chart.df["Year"].value_counts()
     for g in keys:
-        assert f"(Year = {g.get('data-value')}): {counts[int(g.get('data-value'))]} rows" in \
-            g.find(f"{SVG}text").text
+        assert g.find(f"{SVG}text").text == \
+            f"{g.get('data-value')} (Year): {counts[int(g.get('data-value'))]} rows"
 
 
 def test_legend_grows_the_svg_beside_the_canvas_and_can_be_left_out(chart):
@@ -113,6 +114,7 @@ def test_title_and_caption_are_escaped_text_and_bounded(chart):
     root = ET.fromstring(chart.to_svg(caption="Each star: one task."))
     title = root.find(f"{SVG}text[@class='title']")
     assert title.text == "Tasks <2025> & co"
+    assert float(title.get("x")) == chart.canvas[0] / 2        # centred over the chart
     caption = root.find(f"{SVG}text[@class='caption']")
     assert "".join(caption.itertext()) == "Each star: one task."
     assert float(root.get("viewBox").split()[1]) < 0           # the title sits above the canvas

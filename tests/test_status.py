@@ -109,17 +109,17 @@ def test_a_frame_that_cannot_be_sent_ends_the_run_as_an_error_keeping_its_layout
 
 def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
     w = uw.UnitoPia(df, size="v", color="k", iterations=20)
-    assert w.legend["src"].startswith("data:image/svg+xml;base64,")
-    svg = base64.b64decode(w.legend["src"].split(",", 1)[1]).decode()
+    assert w.legend_image["src"].startswith("data:image/svg+xml;base64,")
+    svg = base64.b64decode(w.legend_image["src"].split(",", 1)[1]).decode()
     assert 'data-channel="color"' in svg and "<script" not in svg
-    assert w.legend["width"] > 0 and w.legend["height"] > 0
+    assert w.legend_image["width"] > 0 and w.legend_image["height"] > 0
     w.run(wait=True)
-    after_run = w.legend["src"]
+    after_run = w.legend_image["src"]
     w.layer(0).set(color=None)
-    assert 'data-channel="color"' not in base64.b64decode(w.legend["src"].split(",", 1)[1]).decode()
-    assert w.legend["src"] != after_run
-    w.legend_options = False
-    assert w.legend == {}
+    assert 'data-channel="color"' not in base64.b64decode(w.legend_image["src"].split(",", 1)[1]).decode()
+    assert w.legend_image["src"] != after_run
+    w.legend = False
+    assert w.legend_image == {}
 
 
 def test_the_static_output_carries_the_layout_as_an_image(df):

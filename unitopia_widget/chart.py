@@ -7,6 +7,7 @@ a front end.
 from __future__ import annotations
 
 import json
+import pprint
 import os
 import re
 import tempfile
@@ -18,7 +19,7 @@ import pandas as pd
 
 from .layout import engine
 from .layout.frames import Frames
-from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles
+from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields
 from .output import animation, html
 from .output.export import to_png
 from .output.publish import PageOptions, export_svg
@@ -30,11 +31,12 @@ from .design.validate import check_finite, closest
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
-             "legend")
+             "legend", "tooltip")
 SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
+MIN_DRAWN = 2.0   # px: marks drawn narrower than this are hard to see, and warned about
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -72,6 +74,8 @@ class Chart:
         self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
                                 True if opts.get("legend") is None else opts["legend"])
         opts.pop("legend", None)
+        self._tooltip = opts.pop("tooltip", None)
+        tooltip_fields(df, self._tooltip)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
         mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
@@ -252,12 +256,25 @@ class Chart:
         self._units, self.result, self.placements = units, result, table
         self.frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
         self._placed = units   # the units of the placements, kept when the design changes
+        if not result.cancelled:
+            _warn_small_marks(table, self.layers)
         return table
 
     def titles(self, units=None) -> list[str]:
         """Tooltip text per unit, in unit order."""
         units = self._units if units is None else units
-        return row_titles(self.df.loc[units.rows])
+        return row_titles(self.df.loc[units.rows], self._tooltip)
+
+    @property
+    def tooltip(self):
+        """The ``tooltip=`` columns: None (every column), a list of columns and
+        ``(column, format)`` pairs, or a dict ``{column: format}``."""
+        return self._tooltip
+
+    @tooltip.setter
+    def tooltip(self, value):
+        tooltip_fields(self.df, value)
+        self._tooltip = value
 
     # --- title, caption, legend ------------------------------------------------------
     title = property(lambda self: self.page.title, doc="The chart's title (None: none).")
@@ -345,6 +362,25 @@ class Chart:
                 "seed": self.seed, "scales": self.scales, **self.page.to_json(),
                 "layers": [layer.to_json() for layer in self.layers]}
 
+    @classmethod
+    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "Chart":
+        """A chart of ``df`` with ``design`` (a design JSON dict, as ``design()`` returns);
+        ``kwargs`` as for the constructor (tooltip, device, ...)."""
+        kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
+        chart = cls(df, **kwargs)
+        chart.apply_design(design)
+        return chart
+
+    @classmethod
+    def load(cls, path, df: pd.DataFrame, **kwargs) -> "Chart":
+        """A chart of ``df`` with the design saved at ``path`` (``save("x.json")``)."""
+        return cls.from_design(df, load_design(path), **kwargs)
+
+    def to_code(self, df_name: str = "df") -> str:
+        """Python source that rebuilds this design (sketched containers and marks included,
+        as their stroke lists and polygons) for the DataFrame named ``df_name``."""
+        return design_code(self.design(), f"uw.{type(self).__name__}", df_name)
+
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
@@ -391,6 +427,17 @@ def svg_size(svg: str) -> tuple[float, float]:
     """(width, height) of the root of an exported SVG."""
     m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
     return float(m.group(1)), float(m.group(2))
+
+
+def design_code(design: dict, factory: str, df_name: str = "df", var: str = "chart") -> str:
+    """Python source that sets ``var = factory.from_design(df_name, design)`` with the
+    design written out as a Python literal (plain lists, dicts, numbers and text)."""
+    if not df_name.isidentifier():
+        raise ValueError(f"df_name must be a Python identifier, got {df_name!r:.60}")
+    plain = json.loads(json.dumps(design))   # numpy scalars and tuples as Python literals
+    literal = pprint.pformat(plain, indent=1, width=96, sort_dicts=False)
+    return (f"import unitopia_widget as uw\n\ndesign = {literal}\n"
+            f"{var} = {factory}.from_design({df_name}, design)\n")
 
 
 def load_design(path) -> dict:
@@ -471,6 +518,21 @@ def _pick_mark(mark, value, shape):
                              f"{list(mark)}")
         return mark[value] if value in mark else mark[str(value)]
     return mark
+
+
+def _warn_small_marks(table: pd.DataFrame, layers) -> None:
+    """Warn when the smallest laid-out marks are under ``MIN_DRAWN`` px across, naming the
+    size channels that spread them and what to do instead."""
+    side = np.minimum(table["width"].to_numpy(), table["height"].to_numpy())
+    if not len(side) or side.min() >= MIN_DRAWN:
+        return
+    bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
+                    for c in ("size", "width", "height") if isinstance(layer.encodings[c], str)})
+    small = int((side < MIN_DRAWN).sum())
+    spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
+    warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
+                  f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
+                  f"(np.log1p) or aggregate rows into fewer, larger marks", stacklevel=3)
 
 
 def _canvas(canvas) -> tuple[float, float]:

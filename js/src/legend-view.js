@@ -17,7 +17,7 @@ export function createLegend(view, signal) {
   let drag = null; // {pointer, start, size, corner, stop} while dragging
 
   const trait = () => {
-    const l = model.get("legend");
+    const l = model.get("legend_image");
     return l && typeof l.src === "string" && l.src.startsWith("data:image/") ? l : null;
   };
   /** The legend's size in canvas px. */

@@ -184,7 +184,7 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["change:selected_units"], onSelected, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
-  onModel(model, ["change:legend"], () => legend.place(), signal);
+  onModel(model, ["change:legend_image"], () => legend.place(), signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

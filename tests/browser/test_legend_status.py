@@ -16,7 +16,7 @@ def push_legend(page, w=120, h=80):
         """([w, h]) => {
             const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="${w}" height="${h}">` +
                         `<rect width="${w}" height="${h}" fill="#2a9d3a"/></svg>`;
-            fake.push('legend', {src: 'data:image/svg+xml;base64,' + btoa(svg), width: w, height: h});
+            fake.push('legend_image', {src: 'data:image/svg+xml;base64,' + btoa(svg), width: w, height: h});
         }""",
         [w, h],
     )
@@ -63,7 +63,7 @@ def test_legend_is_shown_beside_the_canvas_dragged_and_hidden(page):
     assert page.evaluate("fake.get('design').legend") == {"visible": False, "position": [680, 420]}
     assert legend.is_hidden()
     assert page.get_attribute('[data-action="toggle-legend"]', "aria-pressed") == "false"
-    page.evaluate("fake.push('legend', {})")  # Python sends none while it is hidden
+    page.evaluate("fake.push('legend_image', {})")  # Python sends none while it is hidden
     assert page.get_attribute('[data-action="toggle-legend"]', "aria-disabled") == "false"
     page.click('[data-action="toggle-legend"]')
     assert page.evaluate("fake.get('design').legend.visible") is True

@@ -7,6 +7,8 @@ exact after layout.
 """
 from __future__ import annotations
 
+import re
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,8 +17,13 @@ from PIL import ImageColor
 
 from .validate import closest
 
+# Tableau 20: ten hues, each then in a light tint; distinct to 20 categories
 CATEGORICAL = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
-               "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")
+               "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#79706e",
+               "#a0cbe8", "#ffbe7d", "#ff9d9a", "#86bcb6", "#8cd17d",
+               "#f1ce63", "#d4a6c8", "#fabfd2", "#d7b5a6", "#d4d0cc")
+MISSING = "missing"       # the category of missing values in a colour column
+MISSING_COLOR = "#bab0ac"  # grey, drawn last in the legend
 SEQUENTIAL = ("#f7e98e", "#9fd27f", "#3fae8a", "#24868e", "#355f8d", "#46327e")  # light -> dark
 DEFAULT_COLOR = "#4e79a7"
 NUMERIC_CHANNELS = ("size", "width", "height", "margin")
@@ -138,19 +145,52 @@ def _order(df, column) -> np.ndarray:
     return ranks
 
 
+def natural_key(value):
+    """Sort key that reads digit runs in text as numbers: "cat2" before "cat10"."""
+    if isinstance(value, str):
+        return tuple((0, int(part), "") if part.isdigit() else (1, 0, part)
+                     for part in re.split(r"(\d+)", value) if part)
+    return value
+
+
 def sorted_unique(series: pd.Series) -> list:
-    """The distinct values of ``series``, sorted when they compare (else first-seen order)."""
-    uniq = pd.unique(series)
+    """The distinct non-missing values of ``series``: a pandas Categorical's own category
+    order, else natural order when they compare (cat2 before cat10), else first-seen order."""
+    if isinstance(series.dtype, pd.CategoricalDtype):
+        present = set(series.dropna())
+        return [c for c in series.cat.categories if c in present]
+    uniq = list(pd.unique(series.dropna()))
     try:
-        return sorted(uniq)
+        return sorted(uniq, key=natural_key)
     except TypeError:
         return list(uniq)
 
 
-def palette_for(values) -> dict:
-    """A categorical palette: one colour per distinct value, in sorted order."""
-    uniq = sorted_unique(pd.Series(list(values)))
-    return {v: CATEGORICAL[i % len(CATEGORICAL)] for i, v in enumerate(uniq)}
+def palette_for(series: pd.Series, name=None) -> dict:
+    """A categorical palette: one colour per distinct value, in sorted order, then
+    :data:`MISSING` in grey when values are missing. Warns (naming the column ``name``)
+    when there are more categories than distinct colours."""
+    series = series if isinstance(series, pd.Series) else pd.Series(list(series))
+    uniq = sorted_unique(series)
+    if name is not None and len(uniq) > len(CATEGORICAL):
+        repeated = ", ".join(repr(str(v)) for v in uniq[len(CATEGORICAL):len(CATEGORICAL) + 3])
+        more = len(uniq) - len(CATEGORICAL)
+        warnings.warn(f"color={name!r}: {len(uniq)} categories but {len(CATEGORICAL)} distinct "
+                      f"colours; {more} categories ({repeated}{', ...' if more > 3 else ''}) repeat "
+                      f"the colours of the first ones; bind color to a column of fewer "
+                      f"categories, or to a numeric column", stacklevel=3)
+    palette = {v: CATEGORICAL[i % len(CATEGORICAL)] for i, v in enumerate(uniq)}
+    if series.isna().any():
+        palette[MISSING] = MISSING_COLOR
+    return palette
+
+
+def missing_warning(series: pd.Series, name) -> None:
+    """Warn that ``series`` (bound to color=``name``) has missing values, drawn grey."""
+    count = int(series.isna().sum())
+    if count:
+        warnings.warn(f"color={name!r}: {count} of {len(series)} rows are missing; they are "
+                      f"drawn as the category {MISSING!r} in grey", stacklevel=3)
 
 
 def _colors(df, color, palette, domain=None) -> list[str]:
@@ -166,13 +206,36 @@ def _colors(df, color, palette, domain=None) -> list[str]:
                          f"nor a CSS colour; the columns are "
                          + ", ".join(repr(c) for c in df.columns))
     series = df[color]
-    if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
-        return sequential(series.to_numpy(dtype=float, na_value=np.nan), domain)
+    if is_continuous(series):
+        return sequential(continuous_values(series), domain)
     try:
-        palette = palette if palette is not None else palette_for(series)
-        return [palette.get(v, DEFAULT_COLOR) for v in series]
+        palette = palette if palette is not None else palette_for(series, color)
+        missing = series.isna().to_numpy()
+        return [palette.get(MISSING, MISSING_COLOR) if gone else palette.get(v, DEFAULT_COLOR)
+                for v, gone in zip(series, missing)]
     except TypeError:
         raise unhashable("color", color, series) from None
+
+
+def is_temporal(series: pd.Series) -> bool:
+    """True for a datetime column (timezone-aware too)."""
+    return pd.api.types.is_datetime64_any_dtype(series)
+
+
+def is_continuous(series: pd.Series) -> bool:
+    """True for a column that colour encodes on a continuous scale: numbers or datetimes."""
+    return is_temporal(series) or (pd.api.types.is_numeric_dtype(series)
+                                   and not pd.api.types.is_bool_dtype(series))
+
+
+def continuous_values(series: pd.Series) -> np.ndarray:
+    """float ``(n,)`` of a continuous column: the numbers, or a datetime's seconds since
+    1970 (UTC); NaN where missing."""
+    if is_temporal(series):
+        stamps = series.dt.tz_convert(None) if series.dt.tz is not None else series
+        seconds = (stamps - pd.Timestamp(0)) / pd.Timedelta(seconds=1)
+        return seconds.to_numpy(dtype=float, na_value=np.nan)
+    return series.to_numpy(dtype=float, na_value=np.nan)
 
 
 def unhashable(channel: str, column, series) -> TypeError:
@@ -214,8 +277,46 @@ def rgba(colors: list) -> np.ndarray:
     return out
 
 
-def titles(df: pd.DataFrame) -> list[str]:
-    """One tooltip per row: ``column: value`` lines."""
-    cols = list(df.columns)
-    return ["\n".join(f"{c}: {v}" for c, v in zip(cols, row))
-            for row in df.itertuples(index=False, name=None)]
+def tooltip_fields(df: pd.DataFrame, tooltip=None) -> list[tuple]:
+    """``[(column, format or None), ...]`` of ``tooltip=``: None (every column), a list of
+    columns and ``(column, format)`` pairs, or a dict ``{column: format or None}``; formats
+    are Python format specs (".1f", ",d", "%Y-%m-%d" for dates). ValueError for a missing
+    column or a format its values do not take."""
+    if tooltip is None:
+        return [(c, None) for c in df.columns]
+    if isinstance(tooltip, str):
+        tooltip = [tooltip]
+    items = list(tooltip.items()) if isinstance(tooltip, dict) else \
+        [tuple(t) if isinstance(t, (list, tuple)) else (t, None) for t in tooltip]
+    fields = []
+    for item in items:
+        if len(item) != 2 or not (item[1] is None or isinstance(item[1], str)):
+            raise ValueError(f"tooltip: each entry must be a column or (column, format), got "
+                             f"{item!r}; e.g. tooltip=['Task', ('Duration', '.1f')]")
+        column, fmt = item
+        check_column(df, "tooltip", column)
+        if fmt is not None and len(df):
+            try:
+                _formatted(df[column].iloc[0], fmt)
+            except (ValueError, TypeError) as exc:
+                raise ValueError(f"tooltip: format {fmt!r} does not apply to column "
+                                 f"{column!r} (dtype {df[column].dtype}): {exc}") from None
+        fields.append((column, fmt))
+    return fields
+
+
+def _formatted(value, fmt) -> str:
+    if fmt is None or pd.isna(value):
+        return str(value)
+    return format(value, fmt)
+
+
+def titles(df: pd.DataFrame, tooltip=None) -> list[str]:
+    """One tooltip per row: ``column: value`` lines of the ``tooltip=`` columns (see
+    :func:`tooltip_fields`; default every column)."""
+    fields = tooltip_fields(df, tooltip)
+    if not fields:
+        return [""] * len(df)
+    cols = [df[c].tolist() for c, _ in fields]
+    return ["\n".join(f"{c}: {_formatted(v, fmt)}" for (c, fmt), v in zip(fields, row))
+            for row in zip(*cols)]

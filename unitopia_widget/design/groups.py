@@ -30,6 +30,11 @@ def mark_choice(df: pd.DataFrame, sub: pd.DataFrame, layer) -> np.ndarray:
                              f"({_listed(keys)}); set shape=<column> to pick each row's mark")
         return np.arange(n) % k
     check_column(df, "shape", column)
+    if k == 1:
+        raise ValueError(f"shape={column!r}: layer {layer.name!r} draws a single mark "
+                         f"({layer.marks[0]!r}), "
+                         f"so every category would look the same; pass a list of marks "
+                         f"(mark=['circle', 'square', ...]) or a dict {{category: mark}}")
     values = sub[column]
     try:
         categories = sorted_categories(df[column])

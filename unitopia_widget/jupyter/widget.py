@@ -17,7 +17,7 @@ import pandas as pd
 import traitlets as t
 
 from ..design import icons
-from ..chart import ARGUMENTS, Chart, check_kwargs, load_design, svg_size
+from ..chart import ARGUMENTS, Chart, check_kwargs, design_code, load_design, svg_size
 from ..design.encodings import rgba
 from ..output.export import to_png
 from .notebook import StaticDisplay
@@ -58,7 +58,9 @@ class UnitoPia(anywidget.AnyWidget):
     ``scales`` ("shared", the default: one global scale, so sizes stay comparable
     across layers; "independent": each layer its own, so each closed container fills),
     ``title``/``caption`` (text above/below the exported chart), ``legend`` (True, False,
-    or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound).
+    or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound),
+    ``tooltip`` (the tooltip's columns: a list of columns and ``(column, format)`` pairs, or
+    a dict ``{column: format}``, e.g. ``["Task", ("Duration", ".1f")]``; default all).
     ``status`` is "idle", "running", "done", "stopped" or "error"; ``stale`` is True when
     the design changed since the shown layout.
     """
@@ -78,7 +80,7 @@ class UnitoPia(anywidget.AnyWidget):
     progress = t.Dict().tag(sync=True)                 #: {"iteration", "max_iterations", "loss", "done"}
     error = t.Unicode("").tag(sync=True)               #: last error message, "" if none
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
-    legend = t.Dict().tag(sync=True)                   #: {} or {"src": svg data URL, "width", "height"}
+    legend_image = t.Dict().tag(sync=True)             #: {} or {"src": svg data URL, "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
     _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
 
@@ -154,10 +156,22 @@ class UnitoPia(anywidget.AnyWidget):
     caption = property(lambda self: self._chart.caption,
                        lambda self, v: setattr(self._chart, "caption", v),
                        doc="The caption drawn under the chart in the export.")
-    legend_options = property(lambda self: self._chart.legend,
-                              lambda self, v: setattr(self._chart, "legend", v),
-                              doc='{"visible": bool, "position": ...}; set True, False, a '
-                                  'position or that dict.')
+    legend = property(lambda self: self._chart.legend,
+                      lambda self, v: setattr(self._chart, "legend", v),
+                      doc='{"visible": bool, "position": ...}; set True, False, a position or '
+                          'that dict (the same name as the constructor\'s and save\'s legend=).')
+
+    @property
+    def tooltip(self):
+        """The tooltip's columns: None (all), a list of columns and (column, format) pairs,
+        or a dict {column: format}; as ``tooltip=``."""
+        return self._chart.tooltip
+
+    @tooltip.setter
+    def tooltip(self, value):
+        self._chart.tooltip = value
+        if self._chart._units is not None:
+            self.titles = self._chart.titles()
 
     def dismiss_error(self) -> None:
         """Clear ``error`` (the front end's "dismiss-error" message does the same)."""
@@ -170,11 +184,20 @@ class UnitoPia(anywidget.AnyWidget):
     @classmethod
     def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
         """A widget for ``df`` with the design saved at ``path``."""
-        design = load_design(path)
+        return cls.from_design(df, load_design(path), **kwargs)
+
+    @classmethod
+    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":
+        """A widget for ``df`` with ``design`` (a design JSON dict, as ``w.design``)."""
         kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
         w = cls(df, **kwargs)
         w._chart.apply_design(design)
         return w
+
+    def to_code(self, df_name: str = "df") -> str:
+        """Python source that rebuilds the current design, sketched containers and marks
+        included (as their stroke lists and polygons), for the DataFrame named ``df_name``."""
+        return design_code(self._chart.design(), "uw.UnitoPia", df_name, var="w")
 
     # --- running ------------------------------------------------------------
     def run(self, wait: bool = False):
@@ -274,7 +297,7 @@ class UnitoPia(anywidget.AnyWidget):
             image = legend_image(self._chart)
         except Exception:   # a design the legend cannot draw yet: shown without one
             image = None
-        self._quiet(legend={} if image is None else {
+        self._quiet(legend_image={} if image is None else {
             "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
             "width": image[1], "height": image[2]})
         if not static:

@@ -20,7 +20,8 @@ import pandas as pd
 import torch
 
 from .atlas import SpriteAtlas
-from ..design.encodings import Encoded, check_column, encode, footprint, palette_for, unhashable
+from ..design.encodings import (Encoded, check_column, continuous_values, encode, footprint,
+                                is_continuous, missing_warning, palette_for, unhashable)
 from ..design.groups import mark_choice
 from .losses import CanvasTerms, sweep_of
 from .placement import Placement
@@ -82,9 +83,10 @@ def bind(df: pd.DataFrame, layers) -> Units:
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
     palettes = {}
     for c in color_cols:
-        if not pd.api.types.is_numeric_dtype(df[c]) or pd.api.types.is_bool_dtype(df[c]):
+        if not is_continuous(df[c]):
+            missing_warning(df[c], c)
             try:
-                palettes[c] = palette_for(df[c])
+                palettes[c] = palette_for(df[c], c)
             except TypeError:
                 raise unhashable("color", c, df[c]) from None
     # numeric colours: one scale per column, shared by the layers (as the palettes are)
@@ -128,8 +130,8 @@ def _positive_mean(series: pd.Series) -> float:
 
 
 def _finite_range(series: pd.Series):
-    """(min, max) of the finite values of a numeric column, or None."""
-    v = series.to_numpy(dtype=float, na_value=np.nan)
+    """(min, max) of the finite values of a numeric or datetime column, or None."""
+    v = continuous_values(series)
     v = v[np.isfinite(v)]
     return (float(v.min()), float(v.max())) if len(v) else None
 

@@ -18,7 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..design.encodings import is_css_color, palette_for
+from ..design.encodings import (continuous_values, is_css_color, is_continuous, is_temporal,
+                                palette_for)
 from ..design.groups import sorted_categories
 from ..design.marks import Mark
 
@@ -26,6 +27,7 @@ FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)
 CHAR_W = 0.6         # text width per character, in font sizes (a safe over-estimate)
 LABEL_CHARS = 40     # labels longer than this are cut with an ellipsis
+MOST_ENTRIES = 20    # a section lists at most this many categories, then "... and n more"
 SWATCH = 16          # px, the long side of a colour or shape swatch and of the unit key's mark
 PAD = 8              # px between items
 BAR = (160, 12)      # px, numeric colour bar (w, h)
@@ -50,6 +52,15 @@ class Section:
     title: str
     entries: list = field(default_factory=list)
     bar: tuple | None = None  # numeric colour: (lo, hi), drawn as a gradient with tick entries
+    more: int = 0             # categories left out after the entries ("... and 9,990 more")
+
+
+def capped(sec: Section, most: int = MOST_ENTRIES) -> Section:
+    """``sec`` with its first ``most`` entries; the rest counted in ``sec.more``."""
+    if len(sec.entries) > most:
+        sec.more = len(sec.entries) - most
+        sec.entries = sec.entries[:most]
+    return sec
 
 
 def clip(text, limit: int = LABEL_CHARS) -> str:
@@ -84,6 +95,29 @@ def _number(v: float) -> str:
     return f"{v:.6g}"
 
 
+def round_dates(lo: float, hi: float, most: int = 4) -> list[float]:
+    """2 to ``most`` tick times (seconds since 1970, UTC) in [lo, hi], at whole days,
+    months or years when the range allows, else spread evenly."""
+    start, end = pd.Timestamp(lo, unit="s"), pd.Timestamp(hi, unit="s")
+    for freq in ("YS", "QS", "MS", "7D", "D", "h", "min", "s"):
+        ticks = pd.date_range(start.ceil("s"), end, freq=freq)
+        if freq in ("7D", "D"):
+            ticks = pd.date_range(start.ceil("D"), end, freq=freq)
+        if 2 <= len(ticks) <= most:
+            return [t.value / 1e9 for t in ticks]
+        if len(ticks) > most:   # too many at this step: every k-th
+            step = -(-len(ticks) // most)
+            return [t.value / 1e9 for t in ticks[::step]]
+    return [lo] if not hi > lo else [lo, hi]
+
+
+def date_label(seconds: float, span: float) -> str:
+    """A tick time as a date ("2024-01-01"), with the time of day when ``span`` (s) is
+    under two days."""
+    t = pd.Timestamp(seconds, unit="s")
+    return t.strftime("%Y-%m-%d %H:%M" if span < 2 * 86400 else "%Y-%m-%d")
+
+
 def neutral(layer, units, i) -> str | None:
     """The colour a layer's size and key marks are drawn in: grey when colour encodes a
     column (no category is meant), else the layer's own colour."""
@@ -96,7 +130,9 @@ def _rows_label(layer) -> str:
     rows = layer.rows
     if rows is None:
         return ""
-    if "column" in rows:
+    if "column" in rows:   # a by= layer is named by its value: the column alone says the rest
+        if str(rows["value"]) == layer.name:
+            return f" ({clip(rows['column'], 20)})"
         return f" ({clip(rows['column'], 20)} = {clip(rows['value'], 20)})"
     return " (chosen rows)"
 
@@ -128,18 +164,23 @@ def _color_sections(rows, layers, units) -> list[Section]:
         # a category's colour on the layer's mark; a plain disc when the layer draws several
         mark = layers[users[0]].mark if len(layers[users[0]].marks) == 1 else _disc()
         series = rows[c][np.isin(units.layer, users)]
-        if pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series):
-            v = series.to_numpy(dtype=float, na_value=np.nan)
+        if is_continuous(series):
+            v = continuous_values(series)
             v = v[np.isfinite(v)]
             lo, hi = float(v.min()), float(v.max())
-            ticks = round_values(lo, hi) if hi > lo else [lo]
-            sec = Section(f"Colour: {clip(c)}", bar=(lo, hi))
-            sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
+            sec = Section(f"Color: {clip(c)}", bar=(lo, hi))
+            if is_temporal(series):
+                sec.entries = [Entry("color", _number(t), date_label(t, hi - lo))
+                               for t in round_dates(lo, hi)]
+            else:
+                ticks = round_values(lo, hi) if hi > lo else [lo]
+                sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
         else:
             palette = palette_for(series)
-            sec = Section(f"Colour: {clip(c)}")
+            sec = Section(f"Color: {clip(c)}")
             sec.entries = [Entry("color", str(value), clip(value), mark, color, *_swatch(mark))
                            for value, color in palette.items()]
+            capped(sec)
         out.append(sec)
     return out
 
@@ -149,9 +190,10 @@ def _disc():
 
 
 def _shape_sections(rows, layers, units) -> list[Section]:
-    """One section per layer with ``shape=``: each category drawn with its own mark (in the
-    category's colour when colour encodes the same column, else the layer's key colour)."""
-    out = []
+    """One section per set of layers that draw the same categories with the same marks
+    under ``shape=`` (each category drawn with its mark, in the category's colour when
+    colour encodes the same column, else the layer's key colour)."""
+    found = []   # (column, {category: (mark, colour)}, [layer indices])
     for i, layer in enumerate(layers):
         c = layer.encodings["shape"]
         if not (isinstance(c, str) and c in rows.columns):
@@ -161,15 +203,32 @@ def _shape_sections(rows, layers, units) -> list[Section]:
         for k, value in zip(mine, rows[c].to_numpy()[mine]):
             first.setdefault(value, k)
         same_colour = layer.encodings["color"] == c
-        title = f"Shape: {clip(c)}" + (f" (layer {clip(layer.name, 20)})" if len(layers) > 1 else "")
-        sec = Section(title)
-        for value in sorted_categories(pd.Series(list(first))):
-            k = first[value]
-            mark = layer.marks[units.mark[k]]
-            color = units.colors[k] if same_colour else neutral(layer, units, i)
+        drawn = {value: (layer.marks[units.mark[k]],
+                         units.colors[k] if same_colour else neutral(layer, units, i))
+                 for value, k in first.items()}
+        for column, seen, users in found:
+            if column == c and all(seen.get(v, d) == d for v, d in drawn.items()):
+                seen.update(drawn)
+                users.append(i)
+                break
+        else:
+            found.append((c, drawn, [i]))
+    out = []
+    for c, drawn, users in found:
+        sec = Section(f"Shape: {clip(c)}" + _layers_note(layers, users))
+        for value in sorted_categories(pd.Series(list(drawn))):
+            mark, color = drawn[value]
             sec.entries.append(Entry("shape", str(value), clip(value), mark, color, *_swatch(mark)))
-        out.append(sec)
+        out.append(capped(sec))
     return out
+
+
+def _layers_note(layers, users) -> str:
+    """`` (layer a)`` or `` (layers a, b)`` when a section holds some of several layers."""
+    if len(users) == len(layers):
+        return ""
+    names = [clip(layers[i].name, 20) for i in users]
+    return f" (layer{'s' if len(names) > 1 else ''} {', '.join(names)})"
 
 
 def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
@@ -195,13 +254,7 @@ def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
             else:
                 groups.append([item])
         for g in groups:
-            names = [clip(layers[i].name, 20) for i, _, _ in g]
-            if len(g) > 1:
-                note = f" (sizes shared across layers {', '.join(names)})"
-            elif len(found) > 1 or len(layers) > 1 and len(groups) > 1:
-                note = f" (layer {names[0]})"
-            else:
-                note = ""
+            note = _layers_note(layers, [i for i, _, _ in g])
             i, per_value, _ = g[0]
             mark, color = layers[i].mark, neutral(layers[i], units, i)
             values = np.concatenate([v for _, _, v in g])
@@ -222,9 +275,12 @@ def _unit_key(layers, units) -> Section:
     for i, layer in enumerate(layers):
         count = int((units.layer == i).sum())
         color = neutral(layer, units, i)
+        # channels that have no section of their own (color, shape and size do)
         bound = [f"{k}: {clip(v, 20)}" for k, v in layer.encodings.items()
-                 if isinstance(v, str) and not (k == "color" and is_css_color(v))]
-        label = f"{clip(layer.name, 30)}{_rows_label(layer)}: {count} rows"
+                 if isinstance(v, str) and k not in ("color", "shape", "size")]
+        # one layer: its name (an internal "layer-1") says nothing the title does not
+        named = f"{clip(layer.name, 30)}{_rows_label(layer)}: " if len(layers) > 1 else ""
+        label = f"{named}{count} rows"
         if bound:
             label += " \u00b7 " + ", ".join(bound)
         sec.entries.append(Entry(None, layer.name[:200], label, layer.mark, color,

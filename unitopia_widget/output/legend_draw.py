@@ -7,6 +7,7 @@ of definitions in the block's own ``<defs>`` (ids ``legend-d<k>``).
 """
 from __future__ import annotations
 
+import unicodedata
 from xml.sax.saxutils import escape, quoteattr
 
 from ..design.encodings import SEQUENTIAL
@@ -20,8 +21,29 @@ def _n(v: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def _text_w(text: str, size: float = FONT) -> float:
-    return len(text) * size * CHAR_W
+# advance widths of ASCII 32..126 in DejaVu Sans (the widest common sans-serif, what the
+# PNG export draws with), in font sizes; bold runs about 12% wider
+_ADVANCE = (0.32, 0.4, 0.46, 0.84, 0.64, 0.95, 0.78, 0.27, 0.39, 0.39, 0.5, 0.84, 0.32, 0.36,
+            0.32, 0.34, *[0.64] * 10, 0.34, 0.34, 0.84, 0.84, 0.84, 0.53, 1.0, 0.68, 0.69, 0.7,
+            0.77, 0.63, 0.58, 0.77, 0.75, 0.29, 0.29, 0.66, 0.56, 0.86, 0.75, 0.79, 0.6, 0.79,
+            0.69, 0.63, 0.61, 0.73, 0.68, 0.99, 0.69, 0.61, 0.69, 0.39, 0.34, 0.39, 0.84, 0.5,
+            0.5, 0.61, 0.63, 0.55, 0.63, 0.62, 0.35, 0.63, 0.63, 0.28, 0.28, 0.58, 0.28, 0.97,
+            0.63, 0.61, 0.63, 0.63, 0.41, 0.52, 0.39, 0.63, 0.59, 0.82, 0.59, 0.59, 0.52, 0.64,
+            0.34, 0.64, 0.84)
+BOLD = 1.12
+
+
+def text_width(text: str, size: float = FONT, bold: bool = False) -> float:
+    """px width of ``text`` at font ``size`` px: per-character advances, non-ASCII at
+    ``CHAR_W`` (wide East Asian characters a full size)."""
+    em = 0.0
+    for ch in text:
+        code = ord(ch)
+        if 32 <= code < 127:
+            em += _ADVANCE[code - 32]
+        else:
+            em += 1.0 if unicodedata.east_asian_width(ch) in "WF" else CHAR_W
+    return em * size * (BOLD if bold else 1.0)
 
 
 class _Defs:
@@ -44,7 +66,7 @@ def _section(sec, defs: _Defs, x0: float, y0: float) -> tuple[list[str], float, 
     out = [f'<text class="legend-title" x="{_n(x0)}" y="{_n(y0 + TITLE_FONT)}" '
            f'font-size="{TITLE_FONT}" font-weight="bold" {TEXT}>{escape(sec.title)}</text>']
     y = y0 + TITLE_FONT + PAD / 2
-    width = _text_w(sec.title, TITLE_FONT)
+    width = text_width(sec.title, TITLE_FONT, bold=True)
     if sec.bar is not None:
         lo, hi = sec.bar
         bw, bh = BAR
@@ -61,7 +83,7 @@ def _section(sec, defs: _Defs, x0: float, y0: float) -> tuple[list[str], float, 
                        f'<line x1="{_n(tx)}" y1="{_n(y)}" x2="{_n(tx)}" y2="{_n(y + bh + 3)}" '
                        f'stroke="#222"/><text x="{_n(tx)}" y="{_n(y + bh + 4 + FONT)}" '
                        f'font-size="{FONT}" text-anchor="middle" {TEXT}>{escape(e.label)}</text></g>')
-        return out, max(width, bw + _text_w(sec.entries[-1].label) / 2), y + bh + 4 + FONT + PAD - y0
+        return out, max(width, bw + text_width(sec.entries[-1].label) / 2), y + bh + 4 + FONT + PAD - y0
     mark_w = max(e.w for e in sec.entries)
     for e in sec.entries:
         row_h = max(e.h, FONT + 2)
@@ -73,8 +95,14 @@ def _section(sec, defs: _Defs, x0: float, y0: float) -> tuple[list[str], float, 
         body += (f'<text x="{_n(label_x)}" y="{_n(cy + FONT * 0.35)}" font-size="{FONT}" '
                  f'{TEXT}>{escape(e.label)}</text>')
         out.append(f'<g class="legend-entry"{attrs}>{body}</g>')
-        width = max(width, mark_w + 6 + _text_w(e.label))
+        width = max(width, mark_w + 6 + text_width(e.label))
         y += row_h + PAD / 2
+    if sec.more:
+        more = f"\u2026 and {sec.more:,} more"
+        out.append(f'<text class="legend-more" x="{_n(x0)}" y="{_n(y + FONT)}" '
+                   f'font-size="{FONT}" {TEXT}>{escape(more)}</text>')
+        width = max(width, text_width(more))
+        y += FONT + PAD / 2
     return out, width, y + PAD - y0
 
 

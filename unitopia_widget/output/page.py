@@ -72,12 +72,13 @@ def compose(canvas, sections=None, position="right", title=None, caption=None) -
         parts.append(block)
         x0, y0 = min(x0, at[0]), min(y0, at[1])
         x1, y1 = max(x1, at[0] + lw), max(y1, at[1] + lh)
-    if title:
+    if title:   # centred over the canvas (the chart), not over the chart and its legend
         y0 -= TITLE_FONT + GAP
-        parts.append(f'<text class="title" x="{(x0 + x1) / 2:.1f}" y="{y0 + TITLE_FONT:.1f}" '
+        parts.append(f'<text class="title" x="{w / 2:.1f}" y="{y0 + TITLE_FONT:.1f}" '
                      f'font-size="{TITLE_FONT}" font-weight="bold" font-family="sans-serif" '
                      f'fill="#222" text-anchor="middle">{escape(title)}</text>')
-        x0, x1 = _fit(x0, x1, len(title) * TITLE_FONT * CHAR_W)
+        half = legend_draw.text_width(title, TITLE_FONT, bold=True) / 2
+        x0, x1 = min(x0, w / 2 - half), max(x1, w / 2 + half)
     if caption:
         per_line = max(20, int((x1 - x0) / (CAPTION_FONT * CHAR_W)))
         lines = textwrap.wrap(caption, per_line) or [caption]
@@ -90,8 +91,3 @@ def compose(canvas, sections=None, position="right", title=None, caption=None) -
         x0, y0, x1, y1 = x0 - BORDER, y0 - BORDER, x1 + BORDER, y1 + BORDER
     return Page(view=(x0, y0, x1 - x0, y1 - y0), overlay="".join(parts))
 
-
-def _fit(x0: float, x1: float, width: float) -> tuple[float, float]:
-    """Widen [x0, x1] symmetrically to hold a centred text ``width`` px wide."""
-    grow = max(0.0, width - (x1 - x0)) / 2
-    return x0 - grow, x1 + grow

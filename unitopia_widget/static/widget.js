@@ -2267,7 +2267,7 @@ function createLegend(view, signal) {
   }, "Legend");
   let drag = null;
   const trait = () => {
-    const l = model.get("legend");
+    const l = model.get("legend_image");
     return l && typeof l.src === "string" && l.src.startsWith("data:image/") ? l : null;
   };
   const size = (l) => [Number(l.width) > 0 ? Number(l.width) : img.naturalWidth, Number(l.height) > 0 ? Number(l.height) : img.naturalHeight];
@@ -2583,7 +2583,7 @@ function renderView({ model, el, signal }) {
   onModel(model, ["change:selected_units"], onSelected, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
-  onModel(model, ["change:legend"], () => legend.place(), signal);
+  onModel(model, ["change:legend_image"], () => legend.place(), signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

@@ -130,7 +130,7 @@ export function defaultState() {
     frame_count: 0,
     status: "idle",
     stale: false,
-    legend: {},
+    legend_image: {},
     progress: {},
     error: "",
     selected_units: [],
