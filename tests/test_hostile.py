@@ -572,7 +572,7 @@ def corrupt_files(good: str) -> dict:
         "list": ("[1, 2, 3]", r"not a unitopia design"),
         "other-schema": ('{"schema": "vega", "version": 1}', r"not a unitopia design"),
         "newer": (json.dumps(newer), r"version 99 is newer than this unitopia-widget reads "
-                                     r"\(up to 2\); upgrade"),
+                                     r"\(up to 3\); upgrade"),
         "bad-field": (json.dumps(bad_layer), r"boundary must be one of 'closed', 'open'; got 'leaky'"),
         "no-mark": (json.dumps(no_mark), r"design layer .*missing 'marks'"),
         "deep": ("[" * 100_000 + "]" * 100_000, r"is not valid JSON|not a unitopia design"),

@@ -397,7 +397,8 @@ class Mark:
             rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
             alpha = rgba[..., 3].astype(np.float32) / 255.0
         if self.solid:
-            alpha = np.maximum(alpha, ndimage.binary_fill_holes(alpha >= 0.5).astype(np.float32))
+            ink = alpha >= 0.5
+            alpha = np.where(ndimage.binary_fill_holes(ink) & ~ink, np.float32(1), alpha)
         return alpha
 
     # --- output -------------------------------------------------------------
