@@ -23,6 +23,7 @@ from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
+from .design.upgrade import upgrade
 from .design.validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
@@ -320,6 +321,7 @@ class Chart:
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
+        d = upgrade(d)
         canvas = _canvas(d.get("canvas", self.canvas))
         seed = _seed(d.get("seed", self.seed))
         scales = _scales(d.get("scales", "shared"), "design: scales")

@@ -7,7 +7,7 @@ export const CHANNELS = ["size", "width", "height", "color", "shape", "margin", 
 export const clone = (value) => (value == null ? value : JSON.parse(JSON.stringify(value)));
 
 export function emptyDesign() {
-  return { schema: "unitopia-design", version: 2, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 3, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 
 export function newLayer(name, mark = { kind: "shape", name: "circle" }) {

@@ -17,7 +17,7 @@ from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark
 from .validate import check_choice, check_finite, closest
 
-SCHEMA, VERSION = "unitopia-design", 2
+SCHEMA, VERSION = "unitopia-design", 3
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
@@ -303,8 +303,8 @@ def _channel(name):
             return value
         if name == "margin" and isinstance(value, Real) and not isinstance(value, bool):
             v = check_finite("Layer", "margin", value)
-            if not 0 <= v <= 2:
-                raise ValueError(f"margin must be a column name or a fraction in [0, 2], got {value!r}")
+            if not 0 <= v <= 4:
+                raise ValueError(f"margin must be a column name or a fraction in [0, 4], got {value!r}")
             return v
         raise TypeError(f"{name} must be a column name or None, got {value!r}")
     return check

@@ -84,7 +84,7 @@ var fmt = (v) => String(Math.round(v * 1e3) / 1e3);
 var CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order"];
 var clone = (value) => value == null ? value : JSON.parse(JSON.stringify(value));
 function emptyDesign() {
-  return { schema: "unitopia-design", version: 2, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 3, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 function newLayer(name, mark = { kind: "shape", name: "circle" }) {
   return {
