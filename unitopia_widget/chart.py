@@ -417,7 +417,9 @@ def _scales(value, what: str = "scales") -> str:
 
 def _seed(seed) -> int:
     if isinstance(seed, bool) or not isinstance(seed, Integral):
-        raise TypeError(f"seed must be an integer, got {seed!r}")
+        raise TypeError(f"seed must be an integer, got {seed!r:.60}")
+    if not -2 ** 63 <= seed < 2 ** 64:   # what torch.Generator.manual_seed takes
+        raise ValueError(f"seed must be an integer in [-2**63, 2**64 - 1], got {seed!r:.60}")
     return int(seed)
 
 

@@ -25,6 +25,7 @@ from PIL import Image
 
 from . import icons
 from ..io import images, svgsafe
+from .validate import short
 
 DEFAULT_COLOR = "#4e79a7"
 FILL_FRACTION_SIDE = 512
@@ -224,10 +225,13 @@ class Mark:
             path = os.fspath(source)
             try:
                 with open(path, "rb") as fp:
+                    size = os.fstat(fp.fileno()).st_size
+                    if size > svgsafe.MAX_SVG_BYTES:
+                        raise ValueError(f"SVG file {short(path)} is {size:,} bytes, over the "
+                                         f"limit of {svgsafe.MAX_SVG_BYTES:,} bytes (5 MB)")
                     text = fp.read(svgsafe.MAX_SVG_BYTES + 1)
-            except (OSError, ValueError) as exc:
-                reason = getattr(exc, "strerror", None) or exc
-                raise ValueError(f"cannot read SVG file {path!r}: {reason}") from None
+            except OSError as exc:
+                raise ValueError(f"cannot read SVG file {short(path)}: {exc.strerror or exc}") from None
         else:
             raise ValueError(f"expected SVG text or a path, got {type(source).__name__}")
         root = svgsafe.parse_svg(text)

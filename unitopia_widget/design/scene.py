@@ -15,7 +15,7 @@ from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark
-from .validate import check_choice, check_finite, closest
+from .validate import check_choice, check_finite, closest, short
 
 SCHEMA, VERSION = "unitopia-design", 3
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
@@ -116,7 +116,7 @@ class Layer:
         Reads version 2 (``marks``, ``mark_keys``) and version 1 (``mark``) layers."""
         if not isinstance(d, dict):
             raise ValueError(f"design layer must be a JSON object, got {type(d).__name__}")
-        who = f"design layer {d.get('name', '?')!r}"
+        who = f"design layer {short(d.get('name', '?'))}"
         missing = [k for k in ("name", "marks") if k not in d and not (k == "marks" and "mark" in d)]
         if missing:
             raise ValueError(f"{who}: missing {' and '.join(map(repr, missing))}")
@@ -235,6 +235,17 @@ def _rows(rows):
     if rows is None or (isinstance(rows, dict) and (
             set(rows) == {"column", "value"} or (set(rows) == {"index"}
                                                  and isinstance(rows["index"], list)))):
+        if rows is not None and "index" in rows:
+            seen, twice = set(), {}
+            for label in rows["index"]:
+                key = repr(label)
+                if key in seen:
+                    twice.setdefault(key, label)
+                seen.add(key)
+            twice = list(twice.values())
+            if twice:
+                raise ValueError(f"layer rows: {len(twice)} label(s) listed more than once in "
+                                 f"'index', e.g. {twice[0]!r:.60}; list each row once")
         return rows
     raise ValueError(f"layer rows must be None, {{'column': name, 'value': v}} or "
                      f"{{'index': [labels]}}; got {rows!r:.80}")
