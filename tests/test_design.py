@@ -106,8 +106,8 @@ def test_margin_column_gives_each_mark_its_own_gap():
 
 
 def test_margin_errors():
-    with pytest.raises(ValueError, match=r"margin must be a column name or a fraction in \[0, 2\], got 3"):
-        uw.Chart(ones(3), margin=3)
+    with pytest.raises(ValueError, match=r"margin must be a column name or a fraction in \[0, 4\], got 5"):
+        uw.Chart(ones(3), margin=5)
 
 
 # --- layers and blocks -----------------------------------------------------------------------
@@ -354,3 +354,36 @@ def test_load_takes_an_explicit_canvas(tmp_path):
     w.save(tmp_path / "d.json")
     again = uw.UnitoPia.load(tmp_path / "d.json", df, canvas=(640, 400))
     assert again.design["canvas"] == [640, 400]
+
+
+def _spacing(chart) -> float:
+    """Median nearest-centre distance over mark width."""
+    p = chart.placements
+    xy = p[["x", "y"]].to_numpy()
+    dist, _ = cKDTree(xy).query(xy, k=2)
+    return float(np.median(dist[:, 1]) / np.median(p["width"]))
+
+
+def test_a_version_2_margin_keeps_its_spacing():
+    """Version 2 padded each mark by margin x size (gap 2m); version 3's gap is m."""
+    df = pd.DataFrame({"v": np.ones(30)})
+    def spaced(design_version, margin):
+        chart = uw.Chart(df, margin=margin, iterations=200, seed=1)
+        d = chart.design()
+        d["version"] = design_version
+        chart.apply_design(d)
+        chart.layout()
+        return _spacing(chart)
+    old = spaced(2, 0.4)                # as version 2 drew it: a gap of 0.8 x size
+    assert abs(old / spaced(3, 0.8) - 1) < 0.03
+    assert abs(old / spaced(3, 0.4) - 1) > 0.03   # read unconverted, it would draw closer
+
+
+def test_a_version_2_margin_bound_to_a_column_is_named_in_a_warning():
+    chart = uw.Chart(pd.DataFrame({"v": np.ones(3), "gap": [0.1, 0.2, 0.3]}), margin="gap",
+                     iterations=20)
+    d = chart.design()
+    d["version"] = 2
+    with pytest.warns(UserWarning, match=r"margin='gap'.*Double the column"):
+        chart.apply_design(d)
+    assert chart.design()["version"] == VERSION == 3

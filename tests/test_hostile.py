@@ -185,6 +185,7 @@ def test_unhashable_categories_are_a_type_error():
     (dict(forces={"kind": "point"}), ValueError, r"a 'point' force dict lacks the key 'x'"),
     (dict(seed="x"), TypeError, r"seed must be an integer, got 'x'"),
     (dict(seed=1.5), TypeError, r"seed must be an integer, got 1.5"),
+    (dict(seed=10 ** 40), ValueError, r"seed must be an integer in \[-2\*\*63, 2\*\*64 - 1\], got 1000"),
     (dict(rotate="no"), TypeError, r"rotate must be True or False, got 'no'"),
     (dict(iterations=5), ValueError, r"iterations must be an integer between 20 and 100000, got 5"),
     (dict(canvas=(0, 100)), ValueError, r"canvas must be between 16 and 10000 pixels"),
@@ -663,3 +664,16 @@ def test_saved_files_get_ordinary_permissions(tmp_path):
     finally:
         os.umask(old)
     assert oct(os.stat(tmp_path / "chart.svg").st_mode & 0o777) == oct(0o644)
+
+
+def test_odd_inputs_are_named_with_bounded_quotes(tmp_path, tasks):
+    with pytest.raises(ValueError, match=r"layer rows: 1 label\(s\) listed more than once in 'index', e\.g\. 0"):
+        uw.Chart(tasks).add_layer("dup", rows={"index": [0, 0, 0, 1]})
+    big = tmp_path / "big.svg"
+    with open(big, "wb") as f:
+        f.write(b"<svg")
+        f.truncate(50_000_000)
+    with pytest.raises(ValueError, match=r"is 50,000,000 bytes, over the limit of 5,000,000"):
+        uw.Mark.svg(big)
+    with pytest.raises(ValueError, match=r"cannot read SVG file '.{59}…': "):
+        uw.Mark.svg(str(tmp_path / ("x" * 10_000)))

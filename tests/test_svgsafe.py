@@ -3,7 +3,9 @@ import base64
 import io
 import struct
 import time
+import re
 import zlib
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -202,3 +204,54 @@ def test_render_uses_only_sanitised_trees():
     assert rgba.shape == (20, 40, 4) and rgba.dtype == np.uint8
     assert rgba[10, 5, 3] == 255 and rgba[10, 35, 3] == 0
     assert "width" not in root.attrib                     # the tree is left unchanged
+
+
+HOSTILE_CSS = ("@charset 'x'; @layer x { .jp-Cell { color: red } } "
+               "@container (min-width: 1px) { .jp-Cell { color: red } } "
+               "@scope (.jp-Cell) { :scope { color: red } } @font-face { font-family: q } "
+               "@layer a, b; @media print { @supports (color: red) { .jp-Cell { color: red } } } "
+               ".body { fill: #00ff00; & .jp-Cell { color: red } .inner { fill: blue } } "
+               "#dot { fill: #0000ff }")
+
+
+def test_every_rule_is_scoped_or_dropped_at_any_depth():
+    from unitopia_widget.io.svgsafe import _blocks
+    root = svgsafe.parse_svg(f'<svg {SVG} viewBox="0 0 2 1"><style><![CDATA[{HOSTILE_CSS}]]></style>'
+                             '<rect class="body" width="1" height="1"/>'
+                             '<rect id="dot" x="1" width="1" height="1"/></svg>')
+    svgsafe.scope(root, "m")
+    css = root.find("style").text
+    assert "@scope" not in css and "@font-face" not in css and "@charset" not in css
+
+    def selectors(text, nested=False):
+        for head, body in _blocks(text):
+            if body is None:
+                continue
+            if head.startswith("@"):
+                yield from selectors(body, nested)
+            else:
+                for s in head.split(","):
+                    yield s.strip(), nested
+                yield from selectors(body, True)
+    found = list(selectors(css))
+    assert len(found) == 7
+    for selector, nested in found:      # top level under #m; nested ones relative to their rule
+        assert nested or selector.startswith("#m "), selector
+        assert re.search(r"[.#](?!m\b)(?!m-)", selector) is None, selector
+    assert "#m #m-dot" in css and 'id="m-dot"' in svgsafe.serialize(root)
+
+
+def test_id_selectors_follow_ids_renamed_in_a_page():
+    from unitopia_widget.jupyter.notebook import prefix_ids
+    root = svgsafe.parse_svg(f'<svg {SVG} viewBox="0 0 2 1"><style>#dot {{ fill: #0000ff }} '
+                             '.body > rect { fill: #00ff00 }</style>'
+                             '<g class="body"><rect width="1" height="1"/></g>'
+                             '<rect id="dot" x="1" width="1" height="1"/></svg>')
+    svgsafe.scope(root, "u0m0")
+    doc = ET.Element("svg", viewBox="0 0 2 1")
+    group = ET.SubElement(doc, "g", id="u0m0")
+    group.append(root)
+    text = prefix_ids(ET.tostring(doc, encoding="unicode"), "c1234")
+    assert "#c1234-u0m0 #c1234-u0m0-dot" in text and "#0000ff" in text
+    pixels = svgsafe.render_svg(svgsafe.parse_svg(text), 20, 10)
+    assert tuple(pixels[5, 5, :3]) == (0, 255, 0) and tuple(pixels[5, 15, :3]) == (0, 0, 255)

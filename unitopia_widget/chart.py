@@ -25,7 +25,8 @@ from .output.export import to_png
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
-                    check_design_header, ink_footprints_before_v3, is_category_dict)
+                    check_design_header, is_category_dict)
+from .design.upgrade import upgrade
 from .design.validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
@@ -384,7 +385,7 @@ class Chart:
     def apply_design(self, d: dict) -> None:
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
-        d = ink_footprints_before_v3(d)
+        d = upgrade(d)
         canvas = _canvas(d.get("canvas", self.canvas))
         seed = _seed(d.get("seed", self.seed))
         scales = _scales(d.get("scales", "shared"), "design: scales")
@@ -491,7 +492,9 @@ def _scales(value, what: str = "scales") -> str:
 
 def _seed(seed) -> int:
     if isinstance(seed, bool) or not isinstance(seed, Integral):
-        raise TypeError(f"seed must be an integer, got {seed!r}")
+        raise TypeError(f"seed must be an integer, got {seed!r:.60}")
+    if not -2 ** 63 <= seed < 2 ** 64:   # what torch.Generator.manual_seed takes
+        raise ValueError(f"seed must be an integer in [-2**63, 2**64 - 1], got {seed!r:.60}")
     return int(seed)
 
 

@@ -26,6 +26,7 @@ from scipy import ndimage
 
 from . import icons
 from ..io import images, svgsafe
+from .validate import short
 
 DEFAULT_COLOR = "#4e79a7"
 FOOTPRINTS = ("silhouette", "ink")   # what a mark collides with: ink with holes filled, or ink
@@ -240,10 +241,13 @@ class Mark:
             path = os.fspath(source)
             try:
                 with open(path, "rb") as fp:
+                    size = os.fstat(fp.fileno()).st_size
+                    if size > svgsafe.MAX_SVG_BYTES:
+                        raise ValueError(f"SVG file {short(path)} is {size:,} bytes, over the "
+                                         f"limit of {svgsafe.MAX_SVG_BYTES:,} bytes (5 MB)")
                     text = fp.read(svgsafe.MAX_SVG_BYTES + 1)
-            except (OSError, ValueError) as exc:
-                reason = getattr(exc, "strerror", None) or exc
-                raise ValueError(f"cannot read SVG file {path!r}: {reason}") from None
+            except OSError as exc:
+                raise ValueError(f"cannot read SVG file {short(path)}: {exc.strerror or exc}") from None
         else:
             raise ValueError(f"expected SVG text or a path, got {type(source).__name__}")
         root = svgsafe.parse_svg(text)

@@ -15,7 +15,7 @@ from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark, check_footprint
-from .validate import check_choice, check_finite, closest
+from .validate import check_choice, check_finite, closest, short
 
 SCHEMA, VERSION = "unitopia-design", 3
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
@@ -121,7 +121,7 @@ class Layer:
         Reads version 2 (``marks``, ``mark_keys``) and version 1 (``mark``) layers."""
         if not isinstance(d, dict):
             raise ValueError(f"design layer must be a JSON object, got {type(d).__name__}")
-        who = f"design layer {d.get('name', '?')!r}"
+        who = f"design layer {short(d.get('name', '?'))}"
         missing = [k for k in ("name", "marks") if k not in d and not (k == "marks" and "mark" in d)]
         if missing:
             raise ValueError(f"{who}: missing {' and '.join(map(repr, missing))}")
@@ -240,6 +240,17 @@ def _rows(rows):
     if rows is None or (isinstance(rows, dict) and (
             set(rows) == {"column", "value"} or (set(rows) == {"index"}
                                                  and isinstance(rows["index"], list)))):
+        if rows is not None and "index" in rows:
+            seen, twice = set(), {}
+            for label in rows["index"]:
+                key = repr(label)
+                if key in seen:
+                    twice.setdefault(key, label)
+                seen.add(key)
+            twice = list(twice.values())
+            if twice:
+                raise ValueError(f"layer rows: {len(twice)} label(s) listed more than once in "
+                                 f"'index', e.g. {twice[0]!r:.60}; list each row once")
         return rows
     raise ValueError(f"layer rows must be None, {{'column': name, 'value': v}} or "
                      f"{{'index': [labels]}}; got {rows!r:.80}")
@@ -308,8 +319,8 @@ def _channel(name):
             return value
         if name == "margin" and isinstance(value, Real) and not isinstance(value, bool):
             v = check_finite("Layer", "margin", value)
-            if not 0 <= v <= 2:
-                raise ValueError(f"margin must be a column name or a fraction in [0, 2], got {value!r}")
+            if not 0 <= v <= 4:
+                raise ValueError(f"margin must be a column name or a fraction in [0, 4], got {value!r}")
             return v
         raise TypeError(f"{name} must be a column name or None, got {value!r}")
     return check
@@ -367,15 +378,6 @@ def block_order(layers) -> list[int]:
     for i in range(len(layers)):
         visit(i, [])
     return out
-
-
-def ink_footprints_before_v3(d: dict) -> dict:
-    """``d`` with every layer of a design older than version 3 given ``footprint="ink"``
-    (version 3 made filled silhouettes the default), so it lays out as it did."""
-    if d.get("version", VERSION) >= 3:
-        return d
-    layers = [{"footprint": "ink", **x} if isinstance(x, dict) else x for x in d.get("layers") or []]
-    return {**d, "layers": layers}
 
 
 def check_design_header(d) -> None:

@@ -37,3 +37,10 @@ def closest(name: str, candidates) -> str:
     """' (did you mean 'x'?)' for the closest candidate, or ''."""
     match = difflib.get_close_matches(str(name), [str(c) for c in candidates], n=1, cutoff=0.5)
     return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+def short(value, limit: int = 60) -> str:
+    """``repr(value)`` of a name or path quoted in an error, cut to ``limit`` characters
+    with an ellipsis so a huge value cannot flood the message."""
+    text = str(value) if isinstance(value, str) else repr(value)
+    return repr(text if len(text) <= limit else text[:limit - 1] + "…")

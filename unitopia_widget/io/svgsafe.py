@@ -258,32 +258,54 @@ _DECL = re.compile(r"(?P<prop>[A-Za-z-]+)(?P<sep>\s*:\s*)(?P<value>[^;{}]*)")
 _NAME = r"-?[A-Za-z_][\w-]*"
 
 
-def _css_blocks(css: str, selector_fn, decl_fn) -> str:
-    """Rewrite CSS rule by rule: selectors through ``selector_fn``, bodies through ``decl_fn``.
+_ENTERED = ("@media", "@supports", "@container", "@layer")
 
-    ``@media``/``@supports`` are entered; other at-rules are kept unchanged.
-    """
-    css = re.sub(r"/\*.*?\*/", "", css, flags=re.S)
-    out, pos = [], 0
-    while True:
-        start = css.find("{", pos)
-        if start < 0:
-            break
-        depth, end = 1, start + 1
+
+def _blocks(css: str):
+    """Split CSS into ``(head, body)`` pairs at depth 0: ``body`` is the text inside a
+    rule's braces, or None for text ending in ``;`` (a declaration or a statement)."""
+    pos = 0
+    while pos < len(css):
+        brace, semi = css.find("{", pos), css.find(";", pos)
+        if brace < 0 or 0 <= semi < brace:
+            stop = len(css) if semi < 0 else semi + 1
+            yield css[pos:stop], None
+            pos = stop
+            continue
+        depth, end = 1, brace + 1
         while end < len(css) and depth:
             depth += {"{": 1, "}": -1}.get(css[end], 0)
             end += 1
-        prelude, body = css[pos:start].strip(), css[start + 1:end - 1]
-        prelude = prelude.rsplit(";", 1)[-1].strip()  # drop stray statements such as @charset
-        if prelude.lower().startswith(("@media", "@supports")):
-            out.append(f"{prelude}{{{_css_blocks(body, selector_fn, decl_fn)}}}")
-        elif prelude.startswith("@"):
-            out.append(f"{prelude}{{{body}}}")
-        else:
-            selectors = ",".join(selector_fn(s.strip()) for s in prelude.split(",") if s.strip())
-            out.append(f"{selectors}{{{decl_fn(body)}}}")
+        yield css[pos:brace].strip(), css[brace + 1:end - 1]
         pos = end
-    return "\n".join(out)
+
+
+def _css_blocks(css: str, selector_fn, decl_fn, nested: bool = False) -> str:
+    """Rewrite CSS rule by rule: selectors through ``selector_fn``, declarations through
+    ``decl_fn``; rules nested in a rule (CSS nesting) have their names renamed by
+    ``selector_fn(s, nested=True)`` and stay relative to the scoped rule around them.
+
+    Only the at-rules that hold rules and style nothing themselves (``@media``,
+    ``@supports``, ``@container``, block ``@layer``) are entered; every other at-rule
+    (``@scope``, ``@font-face``, ``@keyframes``, ``@layer a, b;``, ``@charset``, ...) is
+    dropped, so no rule of a mark's CSS can reach outside the element it is scoped to.
+    """
+    css = re.sub(r"/\*.*?\*/", "", css, flags=re.S)
+    out = []
+    for head, body in _blocks(css):
+        head = head.strip()
+        if body is None:
+            if nested and not head.startswith("@") and head.count('"') % 2 == 0 \
+                    and head.count("'") % 2 == 0:
+                out.append(decl_fn(head))
+        elif head.startswith("@"):
+            if head.lower().startswith(_ENTERED):
+                out.append(f"{head}{{{_css_blocks(body, selector_fn, decl_fn, nested)}}}")
+        elif head:
+            selectors = ",".join(selector_fn(s.strip(), nested=nested) for s in head.split(",")
+                                 if s.strip())
+            out.append(f"{selectors}{{{_css_blocks(body, selector_fn, decl_fn, True)}}}")
+    return ("" if nested else "\n").join(out)
 
 
 def _map_declarations(body: str, fn) -> str:
@@ -303,6 +325,24 @@ def _attribute_pass(root: ET.Element, attr_fn, decl_fn, selector_fn) -> None:
             el.text = _css_blocks(el.text, selector_fn, lambda b: _map_declarations(b, decl_fn))
 
 
+def rename_selector(selector: str, rename, kinds: str = ".#") -> str:
+    """``selector`` with each ``.class`` and ``#id`` name (those of ``kinds``) passed
+    through ``rename``; attribute selectors ``[...]`` are left as they are."""
+    parts = re.split(r"(\[[^\]]*\])", selector)
+    for i in range(0, len(parts), 2):
+        parts[i] = re.sub(rf"([{re.escape(kinds)}])({_NAME})",
+                          lambda m: f"{m[1]}{rename(m[2])}", parts[i])
+    return "".join(parts)
+
+
+def rename_ids(css: str, rename) -> str:
+    """``css`` with every ``#id`` in its selectors passed through ``rename`` (declarations,
+    where ``#`` starts a colour, unchanged); used where a document's ids are renamed."""
+    def selector_fn(selector, nested=False):
+        return rename_selector(selector, rename, "#")
+    return _css_blocks(css, selector_fn, lambda body: body)
+
+
 def scope(root: ET.Element, prefix: str) -> None:
     """Prefix ids and class names with ``prefix-`` and confine CSS rules to ``#prefix``.
 
@@ -318,11 +358,9 @@ def scope(root: ET.Element, prefix: str) -> None:
             return f"#{prefix}-{value[1:]}"
         return rename_urls(value)
 
-    def selector_fn(selector):
-        parts = re.split(r"(\[[^\]]*\])", selector)
-        for i in range(0, len(parts), 2):
-            parts[i] = re.sub(rf"([.#])({_NAME})", lambda m: f"{m[1]}{prefix}-{m[2]}", parts[i])
-        return f"#{prefix} " + "".join(parts)
+    def selector_fn(selector, nested=False):
+        renamed = rename_selector(selector, lambda name: f"{prefix}-{name}")
+        return renamed if nested else f"#{prefix} {renamed}"
 
     _attribute_pass(root, attr_fn, lambda prop, value: rename_urls(value), selector_fn)
 
@@ -345,7 +383,7 @@ def _paint_pass(root: ET.Element, fn) -> None:
     def on_value(prop, value):
         rgb = parse_color(value) if prop in PAINT_PROPERTIES else None
         return value if rgb is None else fn(rgb, value)
-    _attribute_pass(root, on_value, on_value, lambda s: s)
+    _attribute_pass(root, on_value, on_value, lambda s, nested=False: s)
 
 
 def paint_colors(root: ET.Element) -> list[tuple[int, int, int]]:

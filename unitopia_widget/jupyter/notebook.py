@@ -17,13 +17,26 @@ from __future__ import annotations
 import base64
 import re
 import uuid
+from html import unescape
+from xml.sax.saxutils import escape
 
+from ..io import svgsafe
 from ..output.export import to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
 HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "
                    ".jp-OutputArea-child:has(.unitopia-static){display:none}</style>")
 _REFS = re.compile(r'(\bid="|href="#|url\(#)')
+_STYLE = re.compile(r"(<style\b[^>]*>)(.*?)(</style>)", re.S)
+
+
+def prefix_ids(svg: str, prefix: str) -> str:
+    """``svg`` (serialised) with every id, ``#id`` reference and ``#id`` selector of its
+    <style> elements renamed ``prefix-id``."""
+    svg = _REFS.sub(lambda m: m.group(1) + f"{prefix}-", svg)
+    rename = lambda name: f"{prefix}-{name}"
+    return _STYLE.sub(lambda m: m[1] + escape(svgsafe.rename_ids(unescape(m[2]), rename)) + m[3],
+                      svg)
 
 
 class StaticDisplay:
@@ -47,8 +60,8 @@ class StaticDisplay:
             svg = self.widget._chart.to_svg()
         except RuntimeError:   # no layout yet, or one that no longer matches the layers
             return None
-        prefix = self.display_id[len("unitopia-"):][:8]
-        return _REFS.sub(lambda m: m.group(1) + f"c{prefix}-", svg)
+        prefix = "c" + self.display_id[len("unitopia-"):][:8]
+        return prefix_ids(svg, prefix)
 
     def bundle(self) -> dict:
         """The static output's MIME bundle."""

@@ -1,0 +1,61 @@
+"""Older design dicts converted step by step to the current version, keeping their look.
+
+``upgrade(d)`` returns a new dict of version :data:`scene.VERSION`; each step takes a
+design of version ``v`` to ``v + 1`` and changes only what that version changed.
+"""
+from __future__ import annotations
+
+import copy
+import warnings
+from numbers import Real
+
+
+def _margin_v2_to_v3(d: dict) -> dict:
+    """Version 3: a mark's footprint is its box x (1 + margin), so neighbours stand
+    margin x size apart; before, each mark was padded by margin x size (gap 2 x margin).
+    A numeric margin doubles; a margin bound to a column keeps its column, with a warning
+    that its values now give the whole gap (double the column to keep the look)."""
+    for layer in d.get("layers") or []:
+        enc = layer.get("encodings") if isinstance(layer, dict) else None
+        if not isinstance(enc, dict):
+            continue
+        margin = enc.get("margin")
+        if isinstance(margin, Real) and not isinstance(margin, bool):
+            enc["margin"] = 2 * margin
+        elif isinstance(margin, str):
+            warnings.warn(f"design layer {str(layer.get('name', '?'))[:60]!r}: margin={margin[:60]!r} "
+                          f"was saved by design version 2, where a margin padded each mark (gap "
+                          f"2 x margin); version 3 reads it as the whole gap, so the marks stand "
+                          f"half as far apart. Double the column to keep the look", stacklevel=3)
+    return d
+
+
+def _footprint_v2_to_v3(d: dict) -> dict:
+    """Version 3: a mark collides with its ink with enclosed holes filled (``footprint=
+    "silhouette"``); before, with its ink alone. Older layers get ``footprint="ink"``."""
+    d["layers"] = [{"footprint": "ink", **x} if isinstance(x, dict) else x
+                   for x in d.get("layers") or []]
+    return d
+
+
+def _v2_to_v3(d: dict) -> dict:
+    """Version 3 changed what ``margin`` means and the default footprint."""
+    return _footprint_v2_to_v3(_margin_v2_to_v3(d))
+
+
+_STEPS = {2: _v2_to_v3}   # version v -> the step to v + 1 (version 1 reads as 2)
+
+
+def upgrade(d: dict) -> dict:
+    """A copy of design ``d`` (header already checked) converted to the current version."""
+    from .scene import VERSION
+    version = d["version"]
+    if version == VERSION:
+        return d
+    d = copy.deepcopy(d)
+    for v in range(version, VERSION):
+        step = _STEPS.get(v)
+        if step is not None:
+            d = step(d)
+    d["version"] = VERSION
+    return d
