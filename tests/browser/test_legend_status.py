@@ -28,6 +28,12 @@ def test_legend_is_shown_beside_the_canvas_dragged_and_hidden(page):
     push_legend(page)
     legend = page.locator(LEGEND)
     legend.wait_for(state="visible")
+    # the stage gives the legend its room by a resize, a frame or two after the legend shows
+    page.wait_for_function(
+        """([stage, legend]) => {
+            const s = document.querySelector(stage).getBoundingClientRect();
+            return document.querySelector(legend).getBoundingClientRect().x >= s.x + s.width;
+        }""", arg=[STAGE, LEGEND], timeout=5000)
     stage = page.locator(STAGE).bounding_box()
     box = legend.bounding_box()
     k = stage["width"] / 800
