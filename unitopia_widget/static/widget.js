@@ -2396,33 +2396,43 @@ function foldPanels(panels) {
     header.prepend(btn);
   }
 }
+function toggleButton(action, text, label, pressed, onChange) {
+  const btn = h("button", {
+    type: "button",
+    class: "ut-btn",
+    dataset: { action },
+    "aria-pressed": String(pressed),
+    title: label,
+    "aria-label": label,
+    onclick: () => {
+      pressed = !pressed;
+      btn.setAttribute("aria-pressed", String(pressed));
+      onChange(pressed);
+    }
+  }, text);
+  return btn;
+}
 function createToggles(side, onGuides) {
   let guides = false;
-  const panels = h("button", {
-    type: "button",
-    class: "ut-btn",
-    dataset: { action: "toggle-panels" },
-    "aria-pressed": "true",
-    title: "Show or hide the panels",
-    "aria-label": "Show or hide the panels",
-    onclick: () => {
-      side.hidden = !side.hidden;
-      panels.setAttribute("aria-pressed", String(!side.hidden));
+  const panels = toggleButton(
+    "toggle-panels",
+    "Panels",
+    "Show or hide the panels",
+    !side.hidden,
+    (shown) => {
+      side.hidden = !shown;
     }
-  }, "Panels");
-  const guide = h("button", {
-    type: "button",
-    class: "ut-btn",
-    dataset: { action: "toggle-guides" },
-    "aria-pressed": "false",
-    title: "Show the emitters and forces over the marks",
-    "aria-label": "Show the emitters and forces over the marks",
-    onclick: () => {
-      guides = !guides;
-      guide.setAttribute("aria-pressed", String(guides));
+  );
+  const guide = toggleButton(
+    "toggle-guides",
+    "Guides",
+    "Show the emitters and forces over the marks",
+    guides,
+    (shown) => {
+      guides = shown;
       onGuides();
     }
-  }, "Guides");
+  );
   return { panels, guide, guidesShown: () => guides };
 }
 
