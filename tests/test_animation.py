@@ -8,7 +8,7 @@ import pytest
 from PIL import Image, ImageSequence
 
 import unitopia_widget as uw
-from unitopia_widget.chart import svg_size
+from unitopia_widget.output.export import svg_size
 from unitopia_widget.layout.frames import Frames
 from unitopia_widget.output.export import png_array
 

@@ -8,7 +8,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
-from unitopia_widget.chart import load_design
+from unitopia_widget.design.files import load_design
 from unitopia_widget.design.scene import VERSION, block_order
 
 ELLIPSE = uw.Container.ellipse(400, 250, 220, 200)

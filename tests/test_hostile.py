@@ -25,7 +25,8 @@ from PIL import Image
 
 import unitopia_widget as uw
 from unitopia_widget import chart as chart_module
-from unitopia_widget.chart import MAX_LAYERS, MAX_UNITS, load_design
+from unitopia_widget.chart import MAX_LAYERS, MAX_UNITS
+from unitopia_widget.design.files import load_design
 from unitopia_widget.io.images import image_data_url
 
 DATA = Path(__file__).parent / "data" / "marks"

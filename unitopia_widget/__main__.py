@@ -14,7 +14,8 @@ import time
 
 import pandas as pd
 
-from .chart import Chart, load_design
+from .chart import Chart
+from .design.files import load_design
 from .demo import demo_chart
 from .layout.schedule import SCHEDULE
 

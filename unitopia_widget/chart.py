@@ -7,10 +7,8 @@ a front end.
 from __future__ import annotations
 
 import json
-import pprint
 import os
 import re
-import tempfile
 import warnings
 from numbers import Integral
 
@@ -19,13 +17,16 @@ import pandas as pd
 
 from .layout import engine
 from .layout.frames import Frames
-from .design.encodings import NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields
+from .design.encodings import (NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields,
+                               warn_small_marks)
 from .output import animation, html
-from .output.export import to_png
+from .output.export import svg_size, to_png
+from .output.files import atomic_write
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
+from .design.files import design_code, load_design
 from .design.upgrade import upgrade
 from .design.validate import check_finite, closest
 
@@ -37,7 +38,6 @@ SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
-MIN_DRAWN = 2.0   # px: marks drawn narrower than this are hard to see, and warned about
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -258,7 +258,7 @@ class Chart:
         self.frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
         self._placed = units   # the units of the placements, kept when the design changes
         if not result.cancelled:
-            _warn_small_marks(table, self.layers)
+            warn_small_marks(table, self.layers)
         return table
 
     def titles(self, units=None) -> list[str]:
@@ -343,16 +343,16 @@ class Chart:
         if ext in animation.FORMATS:
             fps, seconds = animation.check_timing(fps, seconds)
             images = animation.render(self, svg, fps, seconds)
-            _atomic_write(path, animation.write(path, images, fps))
+            atomic_write(path, animation.write(path, images, fps))
         elif ext == ".html":
             title = self.page.title if title is None else title
-            _atomic_write(path, html.page(svg, title or None, html.replay(self)).encode())
+            atomic_write(path, html.page(svg, title or None, html.replay(self)).encode())
         elif ext == ".svg":
-            _atomic_write(path, svg.encode())
+            atomic_write(path, svg.encode())
         elif ext == ".png":
-            _atomic_write(path, to_png(svg, svg_size(svg), 2.0))
+            atomic_write(path, to_png(svg, svg_size(svg), 2.0))
         elif ext == ".json":
-            _atomic_write(path, json.dumps(self.design(), indent=1).encode())
+            atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:
             raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png, .json, .html, .gif, .webp, .mp4 or .webm")
 
@@ -424,54 +424,6 @@ class Chart:
         self._changed()
 
 
-def svg_size(svg: str) -> tuple[float, float]:
-    """(width, height) of the root of an exported SVG."""
-    m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
-    return float(m.group(1)), float(m.group(2))
-
-
-def design_code(design: dict, factory: str, df_name: str = "df", var: str = "chart") -> str:
-    """Python source that sets ``var = factory.from_design(df_name, design)`` with the
-    design written out as a Python literal (plain lists, dicts, numbers and text)."""
-    if not df_name.isidentifier():
-        raise ValueError(f"df_name must be a Python identifier, got {df_name!r:.60}")
-    plain = json.loads(json.dumps(design))   # numpy scalars and tuples as Python literals
-    literal = pprint.pformat(plain, indent=1, width=96, sort_dicts=False)
-    return (f"import unitopia_widget as uw\n\ndesign = {literal}\n"
-            f"{var} = {factory}.from_design({df_name}, design)\n")
-
-
-def load_design(path) -> dict:
-    """Read and check a design file; a corrupt or too-new file raises ValueError."""
-    try:
-        with open(path, encoding="utf-8") as f:
-            d = json.load(f)
-    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
-        raise ValueError(f"design file {os.fspath(path)!r} is not valid JSON: {e}") from None
-    check_design_header(d)
-    return d
-
-
-def _atomic_write(path: str, data: bytes) -> None:
-    """Write a temporary file beside ``path``, then rename it over ``path``.
-
-    The file gets the permissions a plain ``open(path, "w")`` would (0666
-    less the umask), not mkstemp's private 0600."""
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".unitopia-", suffix=".tmp")
-    umask = os.umask(0)
-    os.umask(umask)
-    os.fchmod(fd, 0o666 & ~umask)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def _rows_of(df: pd.DataFrame, by, value) -> dict:
     """The rows spec of the layer of ``df[by] == value``, JSON-safe for the design file:
     the value as a plain str/int/float/bool when that selects the same rows, else the index."""
@@ -521,21 +473,6 @@ def _pick_mark(mark, value, shape):
                              f"{list(mark)}")
         return mark[value] if value in mark else mark[str(value)]
     return mark
-
-
-def _warn_small_marks(table: pd.DataFrame, layers) -> None:
-    """Warn when the smallest laid-out marks are under ``MIN_DRAWN`` px across, naming the
-    size channels that spread them and what to do instead."""
-    side = np.minimum(table["width"].to_numpy(), table["height"].to_numpy())
-    if not len(side) or side.min() >= MIN_DRAWN:
-        return
-    bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
-                    for c in ("size", "width", "height") if isinstance(layer.encodings[c], str)})
-    small = int((side < MIN_DRAWN).sum())
-    spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
-    warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
-                  f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
-                  f"(np.log1p) or aggregate rows into fewer, larger marks", stacklevel=3)
 
 
 def _canvas(canvas) -> tuple[float, float]:

@@ -19,54 +19,13 @@ from PIL import Image
 
 from . import regions
 from ..io.images import check_pixels, image_data_url, load_image
-from .validate import check_finite, check_positive
+from .validate import (check_box, check_canvas_size, check_coord, check_finite, check_points,
+                       check_positive)
 
 KINDS = ("canvas", "rect", "ellipse", "polygon", "path", "image")
 MAX_INSIDE_SHARE, MIN_INSIDE_SHARE = 0.9, 0.001  # image containers outside these warn
-MAX_COORD = 1e9  # canvas px: larger coordinates are rejected (they only lose precision)
 _FIELDS = {"canvas": (), "rect": ("x", "y", "w", "h"), "ellipse": ("cx", "cy", "rx", "ry"),
            "polygon": ("points",), "path": ("d",), "image": ("image",)}
-
-
-def _coord(owner: str, name: str, value) -> float:
-    value = check_finite(owner, name, value)
-    if abs(value) > MAX_COORD:
-        raise ValueError(f"{owner}: {name} must lie within ±{MAX_COORD:g} canvas px, got {value:g}")
-    return value
-
-
-def _points(owner: str, name: str, points, min_count: int) -> np.ndarray:
-    """``points`` as a finite float64 (k, 2) array with k >= min_count."""
-    try:
-        arr = np.asarray(points, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{owner}: {name} must be a (k, 2) array of numbers, got {points!r:.60}") from None
-    if arr.ndim != 2 or arr.shape[1] != 2 or arr.shape[0] < min_count:
-        raise ValueError(f"{owner}: {name} must be a (k, 2) array with k >= {min_count}, "
-                         f"got shape {arr.shape}")
-    if not np.isfinite(arr).all():
-        raise ValueError(f"{owner}: {name} must be finite, got {float(arr[~np.isfinite(arr)][0])!r}")
-    if np.abs(arr).max() > MAX_COORD:
-        raise ValueError(f"{owner}: {name} must lie within ±{MAX_COORD:g} canvas px, "
-                         f"got {np.abs(arr).max():g}")
-    return arr
-
-
-def _box(owner: str, box):
-    """None or a validated ``(x, y, w, h)`` tuple of floats with w, h > 0."""
-    if box is None:
-        return None
-    if not hasattr(box, "__len__") or len(box) != 4:
-        raise ValueError(f"{owner}: box must be None or (x, y, w, h), got {box!r}")
-    x, y = _coord(owner, "box x", box[0]), _coord(owner, "box y", box[1])
-    return (x, y, check_positive(owner, "box w", box[2]), check_positive(owner, "box h", box[3]))
-
-
-def _canvas(owner: str, canvas_size) -> tuple[float, float]:
-    if not hasattr(canvas_size, "__len__") or len(canvas_size) != 2:
-        raise ValueError(f"{owner}: canvas_size must be (width, height), got {canvas_size!r}")
-    return (check_positive(owner, "canvas width", canvas_size[0]),
-            check_positive(owner, "canvas height", canvas_size[1]))
 
 
 def _num(v: float) -> str:
@@ -100,22 +59,22 @@ class Container:
     def rect(cls, x, y, w, h) -> "Container":
         """The rectangle with top-left corner (x, y) and size w x h (canvas px)."""
         o = "Container.rect"
-        return cls("rect", {"x": _coord(o, "x", x), "y": _coord(o, "y", y),
-                            "w": _coord(o, "w", check_positive(o, "w", w)),
-                            "h": _coord(o, "h", check_positive(o, "h", h))})
+        return cls("rect", {"x": check_coord(o, "x", x), "y": check_coord(o, "y", y),
+                            "w": check_coord(o, "w", check_positive(o, "w", w)),
+                            "h": check_coord(o, "h", check_positive(o, "h", h))})
 
     @classmethod
     def ellipse(cls, cx, cy, rx, ry) -> "Container":
         """The axis-aligned ellipse with centre (cx, cy) and radii rx, ry (canvas px)."""
         o = "Container.ellipse"
-        return cls("ellipse", {"cx": _coord(o, "cx", cx), "cy": _coord(o, "cy", cy),
-                               "rx": _coord(o, "rx", check_positive(o, "rx", rx)),
-                               "ry": _coord(o, "ry", check_positive(o, "ry", ry))})
+        return cls("ellipse", {"cx": check_coord(o, "cx", cx), "cy": check_coord(o, "cy", cy),
+                               "rx": check_coord(o, "rx", check_positive(o, "rx", rx)),
+                               "ry": check_coord(o, "ry", check_positive(o, "ry", ry))})
 
     @classmethod
     def polygon(cls, points) -> "Container":
         """The polygon through ``points`` (k, 2), k >= 3, closed, filled even-odd."""
-        pts = _points("Container.polygon", "points", points, 3)
+        pts = check_points("Container.polygon", "points", points, 3)
         _check_area("Container.polygon", "points", [pts])
         return cls("polygon", {"points": pts.tolist()}, rings=[pts])
 
@@ -136,7 +95,7 @@ class Container:
         if not rings:
             raise ValueError(f"{o}: d draws nothing; got {d[:60]!r}")
         for ring in rings:
-            _points(o, "d", ring, 1)
+            check_points(o, "d", ring, 1)
         _check_area(o, "d", rings)
         return cls("path", {"d": d}, rings=rings)
 
@@ -166,7 +125,7 @@ class Container:
         threshold = check_finite(owner, "threshold", threshold)
         if not 0 < threshold <= 1:
             raise ValueError(f"{owner}: threshold must be in (0, 1], got {threshold:g}")
-        box = _box(owner, box)
+        box = check_box(owner, box)
         if isinstance(source, np.ndarray) and source.dtype == np.bool_ and source.ndim == 2:
             check_pixels(source.shape[1], source.shape[0], what="mask array")
             mask = ~source if invert else source.copy()
@@ -221,15 +180,15 @@ class Container:
         tolerance = check_finite(o, "tolerance", tolerance)
         if not 0 <= tolerance <= 1:
             raise ValueError(f"{o}: tolerance must be in [0, 1], got {tolerance:g}")
-        box = _box(o, box)
+        box = check_box(o, box)
         rgba = np.asarray(load_image(image))
         h, w = rgba.shape[:2]
         if box is None:
-            cw, ch = _canvas(o, canvas_size) if canvas_size is not None else (w, h)
+            cw, ch = check_canvas_size(o, canvas_size) if canvas_size is not None else (w, h)
             place = (0.0, 0.0, cw, ch)
         else:
             place = box
-        px, py = (_coord(o, "point x", v) for v in _points(o, "point", [point], 1)[0])
+        px, py = (check_coord(o, "point x", v) for v in check_points(o, "point", [point], 1)[0])
         col = math.floor((px - place[0]) / place[2] * w)
         row = math.floor((py - place[1]) / place[3] * h)
         if not (0 <= col < w and 0 <= row < h):
@@ -245,8 +204,8 @@ class Container:
         """A new container with the round-capped stroke along ``points`` (k, 2), k >= 1,
         ``width`` canvas px wide, removed. Cuts accumulate."""
         o = "Container.cut"
-        pts = _points(o, "points", points, 1)
-        width = _coord(o, "width", check_positive(o, "width", width))
+        pts = check_points(o, "points", points, 1)
+        width = check_coord(o, "width", check_positive(o, "width", width))
         return Container(self._kind, self._params, rings=self._rings, mask=self._mask,
                          cuts=self._cuts + ((pts, width),))
 
@@ -323,7 +282,7 @@ class Container:
                 raise ValueError(f"Container.inside_share: a {self._kind!r} container needs "
                                  "canvas_size=(width, height)")
             return float(self._mask.mean())
-        w, h = _canvas("Container.inside_share", canvas_size)
+        w, h = check_canvas_size("Container.inside_share", canvas_size)
         return self.area((w, h)) / (w * h)
 
     def preview(self, canvas_size=None, rho: float | None = None) -> Image.Image:
@@ -336,7 +295,7 @@ class Container:
             if canvas_size is None:
                 raise ValueError(f"Container.preview: a {self._kind!r} container needs "
                                  "canvas_size=(width, height)")
-            size = _canvas("Container.preview", canvas_size)
+            size = check_canvas_size("Container.preview", canvas_size)
             rho = min(1.0, 400 / size[0]) if rho is None else rho
             inside = self.coverage(size, rho) >= 0.5
         return Image.fromarray(np.where(inside, 0, 255).astype(np.uint8), "L")
@@ -355,7 +314,7 @@ class Container:
         raster pixel inside the region; pixel (i, j) covers canvas [j/rho, (j+1)/rho] x
         [i/rho, (i+1)/rho]. Exact in x, 1/16-px rows in y (exact for masks). Cached and
         read-only: copy it before writing."""
-        key = ("coverage", _canvas("Container.coverage", canvas_size),
+        key = ("coverage", check_canvas_size("Container.coverage", canvas_size),
                check_positive("Container.coverage", "rho", rho))
         if key not in self._cache:
             rows, line, x0, x1, shape = self._spans(key[1], key[2])
@@ -366,7 +325,7 @@ class Container:
 
     def area(self, canvas_size) -> float:
         """Area of the region inside the canvas, canvas px^2."""
-        size = _canvas("Container.area", canvas_size)
+        size = check_canvas_size("Container.area", canvas_size)
         exact = self._analytic(size)
         if exact is not None:
             return exact[0]
@@ -375,7 +334,7 @@ class Container:
 
     def centroid(self, canvas_size) -> tuple[float, float]:
         """Centre of mass (x, y) of the region inside the canvas, canvas px."""
-        size = _canvas("Container.centroid", canvas_size)
+        size = check_canvas_size("Container.centroid", canvas_size)
         exact = self._analytic(size)
         if exact is not None:
             return exact[1]
@@ -390,7 +349,7 @@ class Container:
 
     def bbox(self, canvas_size) -> tuple[float, float, float, float]:
         """(x, y, w, h) of the inside region within the canvas, canvas px."""
-        size = _canvas("Container.bbox", canvas_size)
+        size = check_canvas_size("Container.bbox", canvas_size)
         rows, line, x0, x1, _ = self._spans(size, 1.0)
         if len(line) == 0:
             raise ValueError(f"Container.bbox: {self!r} does not overlap the "
@@ -410,7 +369,7 @@ class Container:
             return None
         p, n = self._params, _num
         if self._kind == "canvas":
-            w, h = _canvas("Container.svg_path", canvas_size)
+            w, h = check_canvas_size("Container.svg_path", canvas_size)
             return f"M0 0H{n(w)}V{n(h)}H0Z"
         if self._kind == "rect":
             return f"M{n(p['x'])} {n(p['y'])}h{n(p['w'])}v{n(p['h'])}h{n(-p['w'])}Z"

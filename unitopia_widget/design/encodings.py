@@ -320,3 +320,22 @@ def titles(df: pd.DataFrame, tooltip=None) -> list[str]:
     cols = [df[c].tolist() for c, _ in fields]
     return ["\n".join(f"{c}: {_formatted(v, fmt)}" for (c, fmt), v in zip(fields, row))
             for row in zip(*cols)]
+
+
+MIN_DRAWN = 2.0   # px: marks drawn narrower than this are hard to see, and warned about
+
+
+def warn_small_marks(table: pd.DataFrame, layers) -> None:
+    """Warn when the smallest laid-out marks of placements ``table`` (its ``width`` and
+    ``height`` columns, px) are under ``MIN_DRAWN`` px across, naming the size channels of
+    ``layers`` that spread them and what to do instead."""
+    side = np.minimum(table["width"].to_numpy(), table["height"].to_numpy())
+    if not len(side) or side.min() >= MIN_DRAWN:
+        return
+    bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
+                    for c in ("size", "width", "height") if isinstance(layer.encodings[c], str)})
+    small = int((side < MIN_DRAWN).sum())
+    spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
+    warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
+                  f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
+                  f"(np.log1p) or aggregate rows into fewer, larger marks", stacklevel=3)

@@ -21,7 +21,7 @@ from html import unescape
 from xml.sax.saxutils import escape
 
 from ..io import svgsafe
-from ..output.export import to_png
+from ..output.export import svg_size, to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
 HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "
@@ -70,7 +70,6 @@ class StaticDisplay:
         if svg is None:
             return {"text/plain": plain,
                     "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static"><pre>{plain}</pre></div>'}
-        from ..chart import svg_size
         png = base64.b64encode(to_png(svg, svg_size(svg), 1.0)).decode()
         return {"text/plain": plain, "image/svg+xml": svg, "image/png": png,
                 "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static">{svg}</div>'}

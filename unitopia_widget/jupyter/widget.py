@@ -17,9 +17,10 @@ import pandas as pd
 import traitlets as t
 
 from ..design import icons
-from ..chart import ARGUMENTS, Chart, check_kwargs, design_code, load_design, svg_size
+from ..chart import ARGUMENTS, Chart, check_kwargs
+from ..design.files import design_code, load_design
 from ..design.encodings import rgba
-from ..output.export import to_png
+from ..output.export import svg_size, to_png
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner

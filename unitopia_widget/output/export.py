@@ -11,6 +11,7 @@ definition. The unit transform maps the mark's box onto its placement:
 from __future__ import annotations
 
 import io
+import re
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
@@ -87,3 +88,9 @@ def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:
 def png_array(svg: str, canvas, scale: float = 1.0) -> np.ndarray:
     """``(H, W, 4)`` uint8 RGBA of ``svg`` rendered at ``scale``."""
     return np.array(Image.open(io.BytesIO(to_png(svg, canvas, scale))).convert("RGBA"))
+
+
+def svg_size(svg: str) -> tuple[float, float]:
+    """(width, height) of the root of an exported SVG."""
+    m = re.match(r'<svg[^>]*? width="([0-9.]+)" height="([0-9.]+)"', svg)
+    return float(m.group(1)), float(m.group(2))
