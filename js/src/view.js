@@ -21,6 +21,7 @@ import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
 import { download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
+import { createReplay } from "./replay.js";
 
 export function renderView({ model, el, signal }) {
   const s = session(model);
@@ -90,8 +91,9 @@ export function renderView({ model, el, signal }) {
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
   foldPanels(panels);
   const toggles = createToggles(side, () => redraw("over"));
+  const replay = createReplay(() => redraw("marks"));
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, replay.el, status.el),
     status.banner,
     status.notice,
     h("div", { class: "ut-main" }, legend.area, side),
@@ -117,6 +119,7 @@ export function renderView({ model, el, signal }) {
       legend.place();
     }
     if (interp.step(now)) dirty.add("marks");
+    if (replay.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
     if (dirty.has("over")) {
@@ -125,13 +128,13 @@ export function renderView({ model, el, signal }) {
     }
     if (dirty.has("marks")) {
       const t0 = performance.now();
-      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
+      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
       bitmaps.need(px);
       stats.paints++;
       stats.paintMs += performance.now() - t0;
     }
     dirty.clear();
-    if (!interp.settled) raf = requestAnimationFrame(paint);
+    if (!interp.settled || replay.playing()) raf = requestAnimationFrame(paint);
   }
 
   // --- trait -> view -----------------------------------------------------------
@@ -157,6 +160,7 @@ export function renderView({ model, el, signal }) {
     stats.framesReceived++;
     const had = view.hasFrame();
     interp.push(frame, performance.now());
+    if (model.get("status") === "running") replay.record(frame);
     if (model.get("status") !== "running") interp.snap();
     redraw(...(had === view.hasFrame() ? ["marks"] : ["marks", "over"])); // the guides hide once marks show
   }
@@ -174,6 +178,9 @@ export function renderView({ model, el, signal }) {
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
     root.dataset.stale = String(!!model.get("stale"));
     root.dataset.kernel = status.kernel();
+    const running = model.get("status") === "running";
+    if (running && !(Number(model.get("frame_count")) > 0)) replay.clear(); // a new run
+    replay.update(running && status.kernel() !== "gone");
     status.update();
     toolbar.update();
   }
