@@ -17,7 +17,8 @@ export function lerpFrame(out, from, to, alpha) {
   for (let i = 0; i < to.length; i += 4) {
     out[i] = from[i] + (to[i] - from[i]) * alpha;
     out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
-    out[i + 2] = from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
+    // equal angles (upright marks: every layout without rotation) skip the modular delta
+    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
     out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
   }
   return out;
