@@ -226,6 +226,8 @@ export function createReplay(onChange) {
       return moved;
     },
     frame: () => player.frame(),
+    /** The received frame index on screen, or null while the live frames show. */
+    position: () => player.position,
     playing: () => player.playing,
   };
 }

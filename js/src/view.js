@@ -35,7 +35,7 @@ export function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = new Set(), draft = null, index = null;
+  let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null;
   const dirty = new Set();
   let raf = 0;
 
@@ -77,8 +77,10 @@ export function renderView({ model, el, signal }) {
   };
 
   function hitIndex() {
-    const frame = interp.to;
-    if (!index || index.units !== units || index.frame !== frame) index = new HitIndex(units, frame);
+    const at = replay.position(); // hover and clicks hit the marks where the replay shows them
+    const frame = at === null ? interp.to : replay.frame();
+    if (!index || index.units !== units || index.frame !== frame || indexAt !== at) index = new HitIndex(units, frame);
+    indexAt = at;
     return index;
   }
 

@@ -1,12 +1,13 @@
 """The replay of the last run, in the built front end against a fake model: with the
-kernel gone it plays from the first frame, the marks move, scrubbing to the end shows
-the final layout, nothing is sent, and a new run clears the recording."""
+kernel gone it plays from the first frame, the marks move, hover finds them where they
+are shown, scrubbing to the end shows the final layout, nothing is sent, and a new run
+clears the recording."""
 
 from __future__ import annotations
 
 import pytest
 
-from test_frontend import ROOT, mount, next_paint
+from test_frontend import ROOT, STAGE, mount, next_paint, to_page
 
 pytestmark = pytest.mark.browser
 
@@ -80,6 +81,16 @@ def test_replay_plays_and_scrubs_without_a_kernel(page):
     page.keyboard.press("ArrowRight")
     mark_at(page, 120)
     assert page.locator(REPLAY).get_attribute("data-state") == "paused"
+    # hover finds the mark where the replay shows it
+    page.click('[data-tool="select"]')
+    page.locator(STAGE).hover()
+    page.mouse.move(*to_page(page, 120, 250))
+    tip = page.locator('[role="tooltip"]')
+    tip.wait_for(state="visible")
+    assert tip.inner_text() == "row 0"
+    page.mouse.move(*to_page(page, 700, 250))
+    tip.wait_for(state="hidden")
+    scrub.focus()
     page.keyboard.press("End")
     mark_at(page, 700)
     next_paint(page)

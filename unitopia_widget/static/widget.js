@@ -2624,6 +2624,8 @@ function createReplay(onChange) {
       return moved;
     },
     frame: () => player.frame(),
+    /** The received frame index on screen, or null while the live frames show. */
+    position: () => player.position,
     playing: () => player.playing
   };
 }
@@ -2639,7 +2641,7 @@ function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null;
+  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null;
   const dirty = /* @__PURE__ */ new Set();
   let raf = 0;
   const view = {
@@ -2683,8 +2685,10 @@ function renderView({ model, el, signal }) {
     redraw
   };
   function hitIndex() {
-    const frame = interp.to;
-    if (!index || index.units !== units || index.frame !== frame) index = new HitIndex(units, frame);
+    const at = replay.position();
+    const frame = at === null ? interp.to : replay.frame();
+    if (!index || index.units !== units || index.frame !== frame || indexAt !== at) index = new HitIndex(units, frame);
+    indexAt = at;
     return index;
   }
   const toolbar = createToolbar(view);
