@@ -1,8 +1,8 @@
 // Replay of the last run: the view records the frames a run streams (a Recording bounded
-// by a memory budget) and a Player plays, pauses and scrubs them with no kernel. Nothing
-// is sent: the marks are drawn from the recorded frames through the usual draw path.
+// by a memory budget) and a Player plays, pauses and scrubs them with no kernel (the
+// control is replay-control.js). Nothing is sent: the marks are drawn from the recorded
+// frames through the usual draw path.
 // Frames are Float32Array (N, 4) row-major: x, y (canvas px), angle (degrees), scale.
-import { h } from "./dom.js";
 import { angleDelta } from "./frames.js";
 
 /** Bytes of frames one view keeps: 64 MiB, so 20,000 units keep 209 frames. */
@@ -157,77 +157,4 @@ export class Player {
     this.out = this.recording.sample(this.position, this.out);
     return this.out;
   }
-}
-
-/**
- * The replay control: a play / pause button and a scrub slider (both native controls, so
- * Tab, Space, Enter, the arrow keys, Home and End work). It shows once a run left two
- * frames or more. `onChange()` after every move asks the view to repaint the marks.
- */
-export function createReplay(onChange) {
-  const recording = new Recording();
-  const player = new Player(recording);
-  const button = h("button", {
-    type: "button", class: "ut-btn", dataset: { action: "replay" },
-    onclick: () => {
-      if (player.playing) player.pause();
-      else player.play(performance.now());
-      show();
-    },
-  });
-  const slider = h("input", {
-    type: "range", class: "ut-replay-scrub", min: "0", max: "0", step: "1", value: "0",
-    title: "Replay position (frame of the last run)", "aria-label": "Replay position (frame of the last run)",
-    oninput: () => {
-      player.seek(Number(slider.value));
-      show();
-    },
-  });
-  const el = h("div", { class: "ut-group ut-replay", dataset: { role: "replay", state: "live" }, role: "group", "aria-label": "Replay of the last run", hidden: true }, button, slider);
-
-  /** The button, slider and state follow the player. */
-  function sync() {
-    const label = player.playing ? "Pause the replay" : "Replay the last run's settling";
-    button.textContent = player.playing ? "\u275a\u275a" : "\u25b6";
-    button.title = label;
-    button.setAttribute("aria-label", label);
-    el.dataset.state = player.playing ? "playing" : player.position === null ? "live" : "paused";
-    slider.max = String(player.end);
-    slider.value = String(player.position === null ? player.end : Math.round(player.position));
-  }
-  const show = () => (sync(), onChange());
-  sync();
-
-  return {
-    el,
-    /** A frame streamed during a run. */
-    record(frame) {
-      recording.push(frame);
-      el.hidden = recording.length < 2;
-      slider.max = String(player.end);
-      if (player.position === null) slider.value = slider.max;
-    },
-    /** A new run: the recording and the replay on screen go. */
-    clear() {
-      recording.clear();
-      player.stop();
-      el.hidden = true;
-      show();
-    },
-    /** `live`: a run streams now (a kernel is there); the replay waits until it ends. */
-    update(live) {
-      button.disabled = slider.disabled = !!live;
-      if (live && player.position !== null) player.stop(), show();
-    },
-    /** Called by the view's paint at time `now`; true when the frame on screen moved. */
-    step(now) {
-      const moved = player.step(now);
-      if (moved) sync();
-      return moved;
-    },
-    frame: () => player.frame(),
-    /** The received frame index on screen, or null while the live frames show. */
-    position: () => player.position,
-    playing: () => player.playing,
-  };
 }

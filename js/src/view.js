@@ -21,7 +21,7 @@ import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
 import { download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
-import { createReplay } from "./replay.js";
+import { createReplay } from "./replay-control.js";
 
 export function renderView({ model, el, signal }) {
   const s = session(model);

@@ -2557,6 +2557,8 @@ var Player = class {
     return this.out;
   }
 };
+
+// src/replay-control.js
 function createReplay(onChange) {
   const recording = new Recording();
   const player = new Player(recording);
