@@ -21,6 +21,7 @@ import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
 import { download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
+import { createReplay } from "./replay-control.js";
 
 export function renderView({ model, el, signal }) {
   const s = session(model);
@@ -34,7 +35,7 @@ export function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = new Set(), draft = null, index = null;
+  let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null;
   const dirty = new Set();
   let raf = 0;
 
@@ -76,8 +77,10 @@ export function renderView({ model, el, signal }) {
   };
 
   function hitIndex() {
-    const frame = interp.to;
-    if (!index || index.units !== units || index.frame !== frame) index = new HitIndex(units, frame);
+    const at = replay.position(); // hover and clicks hit the marks where the replay shows them
+    const frame = at === null ? interp.to : replay.frame();
+    if (!index || index.units !== units || index.frame !== frame || indexAt !== at) index = new HitIndex(units, frame);
+    indexAt = at;
     return index;
   }
 
@@ -90,8 +93,9 @@ export function renderView({ model, el, signal }) {
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
   foldPanels(panels);
   const toggles = createToggles(side, () => redraw("over"));
+  const replay = createReplay(() => redraw("marks"));
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, replay.el, status.el),
     status.banner,
     status.notice,
     h("div", { class: "ut-main" }, legend.area, side),
@@ -117,6 +121,7 @@ export function renderView({ model, el, signal }) {
       legend.place();
     }
     if (interp.step(now)) dirty.add("marks");
+    if (replay.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
     if (dirty.has("over")) {
@@ -125,13 +130,13 @@ export function renderView({ model, el, signal }) {
     }
     if (dirty.has("marks")) {
       const t0 = performance.now();
-      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
+      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
       bitmaps.need(px);
       stats.paints++;
       stats.paintMs += performance.now() - t0;
     }
     dirty.clear();
-    if (!interp.settled) raf = requestAnimationFrame(paint);
+    if (!interp.settled || replay.playing()) raf = requestAnimationFrame(paint);
   }
 
   // --- trait -> view -----------------------------------------------------------
@@ -157,6 +162,7 @@ export function renderView({ model, el, signal }) {
     stats.framesReceived++;
     const had = view.hasFrame();
     interp.push(frame, performance.now());
+    if (model.get("status") === "running") replay.record(frame);
     if (model.get("status") !== "running") interp.snap();
     redraw(...(had === view.hasFrame() ? ["marks"] : ["marks", "over"])); // the guides hide once marks show
   }
@@ -174,6 +180,9 @@ export function renderView({ model, el, signal }) {
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
     root.dataset.stale = String(!!model.get("stale"));
     root.dataset.kernel = status.kernel();
+    const running = model.get("status") === "running";
+    if (running && !(Number(model.get("frame_count")) > 0)) replay.clear(); // a new run
+    replay.update(running && status.kernel() !== "gone");
     status.update();
     toolbar.update();
   }

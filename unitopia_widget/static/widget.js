@@ -2436,6 +2436,202 @@ function createToggles(side, onGuides) {
   return { panels, guide, guidesShown: () => guides };
 }
 
+// src/replay.js
+var BUDGET_BYTES = 64 * 1024 * 1024;
+var PLAY_FPS = 30;
+var MAX_SECONDS = 10;
+function lerpFrame(out, from, to, alpha) {
+  for (let i = 0; i < to.length; i += 4) {
+    out[i] = from[i] + (to[i] - from[i]) * alpha;
+    out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
+    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
+    out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
+  }
+  return out;
+}
+var Recording = class {
+  constructor(budgetBytes = BUDGET_BYTES) {
+    if (!(budgetBytes > 0)) throw new RangeError(`budgetBytes must be a positive number of bytes, got ${budgetBytes}`);
+    this.budget = budgetBytes;
+    this.clear();
+  }
+  clear() {
+    this.kept = [];
+    this.received = 0;
+    this.stride = 1;
+  }
+  /** Kept frames. */
+  get length() {
+    return this.kept.length;
+  }
+  /** Bytes held by the kept frames. */
+  get bytes() {
+    return this.kept.reduce((sum, e) => sum + e.data.byteLength, 0);
+  }
+  push(frame) {
+    if (!frame || !frame.length) return;
+    if (this.kept.length && this.kept[0].data.length !== frame.length) this.clear();
+    const index = this.received++;
+    const tail = this.kept[this.kept.length - 1];
+    const reuse = tail && tail.index % this.stride !== 0 ? this.kept.pop().data : null;
+    const data = reuse || new Float32Array(frame.length);
+    data.set(frame);
+    this.kept.push({ index, data });
+    const max = Math.max(2, Math.floor(this.budget / data.byteLength));
+    while (this.kept.length > max) {
+      this.stride *= 2;
+      const latest = this.kept[this.kept.length - 1];
+      this.kept = this.kept.filter((e) => e.index % this.stride === 0 || e === latest);
+    }
+  }
+  /**
+   * The frame at `position` (a received frame index, fractions allowed), interpolated
+   * between the kept frames around it, written into `out` (reused when its length fits).
+   * Null when nothing is recorded.
+   */
+  sample(position, out = null) {
+    const kept = this.kept;
+    if (!kept.length) return null;
+    const first = kept[0], last = kept[kept.length - 1];
+    if (!out || out.length !== first.data.length) out = new Float32Array(first.data.length);
+    if (!(position > first.index)) return out.set(first.data), out;
+    if (position >= last.index) return out.set(last.data), out;
+    let lo = 0, hi = kept.length - 1;
+    while (hi - lo > 1) {
+      const mid = lo + hi >> 1;
+      if (kept[mid].index <= position) lo = mid;
+      else hi = mid;
+    }
+    const a = kept[lo], b = kept[hi];
+    return lerpFrame(out, a.data, b.data, (position - a.index) / (b.index - a.index));
+  }
+};
+var Player = class {
+  constructor(recording, { fps = PLAY_FPS, maxSeconds = MAX_SECONDS } = {}) {
+    this.recording = recording;
+    this.fps = fps;
+    this.maxSeconds = maxSeconds;
+    this.position = null;
+    this.playing = false;
+    this.out = null;
+  }
+  /** The last position: the latest received frame. */
+  get end() {
+    return Math.max(0, this.recording.received - 1);
+  }
+  /** Received frames per second of replay. */
+  get rate() {
+    return Math.max(this.fps, this.end / this.maxSeconds);
+  }
+  play(now) {
+    if (this.position === null || this.position >= this.end) this.position = 0;
+    this.playing = true;
+    this.startTime = now;
+    this.startPosition = this.position;
+  }
+  pause() {
+    this.playing = false;
+  }
+  /** Shows the frame at `position` (clamped to the recording), paused. */
+  seek(position) {
+    this.playing = false;
+    this.position = Math.min(this.end, Math.max(0, Number(position) || 0));
+  }
+  /** Back to the live frames. */
+  stop() {
+    this.playing = false;
+    this.position = null;
+  }
+  /** Advances a playing replay to time `now`; true when the position moved. */
+  step(now) {
+    if (!this.playing) return false;
+    const elapsed = Math.max(0, now - this.startTime) / 1e3;
+    this.position = Math.min(this.end, this.startPosition + elapsed * this.rate);
+    if (this.position >= this.end) this.playing = false;
+    return true;
+  }
+  /** The frame to draw, or null while the live frames show. */
+  frame() {
+    if (this.position === null) return null;
+    this.out = this.recording.sample(this.position, this.out);
+    return this.out;
+  }
+};
+
+// src/replay-control.js
+function createReplay(onChange) {
+  const recording = new Recording();
+  const player = new Player(recording);
+  const button = h("button", {
+    type: "button",
+    class: "ut-btn",
+    dataset: { action: "replay" },
+    onclick: () => {
+      if (player.playing) player.pause();
+      else player.play(performance.now());
+      show();
+    }
+  });
+  const slider = h("input", {
+    type: "range",
+    class: "ut-replay-scrub",
+    min: "0",
+    max: "0",
+    step: "1",
+    value: "0",
+    title: "Replay position (frame of the last run)",
+    "aria-label": "Replay position (frame of the last run)",
+    oninput: () => {
+      player.seek(Number(slider.value));
+      show();
+    }
+  });
+  const el = h("div", { class: "ut-group ut-replay", dataset: { role: "replay", state: "live" }, role: "group", "aria-label": "Replay of the last run", hidden: true }, button, slider);
+  function sync() {
+    const label = player.playing ? "Pause the replay" : "Replay the last run's settling";
+    button.textContent = player.playing ? "❚❚" : "▶";
+    button.title = label;
+    button.setAttribute("aria-label", label);
+    el.dataset.state = player.playing ? "playing" : player.position === null ? "live" : "paused";
+    slider.max = String(player.end);
+    slider.value = String(player.position === null ? player.end : Math.round(player.position));
+  }
+  const show = () => (sync(), onChange());
+  sync();
+  return {
+    el,
+    /** A frame streamed during a run. */
+    record(frame) {
+      recording.push(frame);
+      el.hidden = recording.length < 2;
+      slider.max = String(player.end);
+      if (player.position === null) slider.value = slider.max;
+    },
+    /** A new run: the recording and the replay on screen go. */
+    clear() {
+      recording.clear();
+      player.stop();
+      el.hidden = true;
+      show();
+    },
+    /** `live`: a run streams now (a kernel is there); the replay waits until it ends. */
+    update(live) {
+      button.disabled = slider.disabled = !!live;
+      if (live && player.position !== null) player.stop(), show();
+    },
+    /** Called by the view's paint at time `now`; true when the frame on screen moved. */
+    step(now) {
+      const moved = player.step(now);
+      if (moved) sync();
+      return moved;
+    },
+    frame: () => player.frame(),
+    /** The received frame index on screen, or null while the live frames show. */
+    position: () => player.position,
+    playing: () => player.playing
+  };
+}
+
 // src/view.js
 function renderView({ model, el, signal }) {
   const s = session(model);
@@ -2447,7 +2643,7 @@ function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null;
+  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null;
   const dirty = /* @__PURE__ */ new Set();
   let raf = 0;
   const view = {
@@ -2491,8 +2687,10 @@ function renderView({ model, el, signal }) {
     redraw
   };
   function hitIndex() {
-    const frame = interp.to;
-    if (!index || index.units !== units || index.frame !== frame) index = new HitIndex(units, frame);
+    const at = replay.position();
+    const frame = at === null ? interp.to : replay.frame();
+    if (!index || index.units !== units || index.frame !== frame || indexAt !== at) index = new HitIndex(units, frame);
+    indexAt = at;
     return index;
   }
   const toolbar = createToolbar(view);
@@ -2504,8 +2702,9 @@ function renderView({ model, el, signal }) {
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
   foldPanels(panels);
   const toggles = createToggles(side, () => redraw("over"));
+  const replay = createReplay(() => redraw("marks"));
   root.append(
-    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, status.el),
+    h("div", { class: "ut-top" }, toolbar.el, legend.toggle, toggles.panels, toggles.guide, replay.el, status.el),
     status.banner,
     status.notice,
     h("div", { class: "ut-main" }, legend.area, side)
@@ -2529,6 +2728,7 @@ function renderView({ model, el, signal }) {
       legend.place();
     }
     if (interp.step(now)) dirty.add("marks");
+    if (replay.step(now)) dirty.add("marks");
     const unit = view.unit();
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
     if (dirty.has("over")) {
@@ -2537,13 +2737,13 @@ function renderView({ model, el, signal }) {
     }
     if (dirty.has("marks")) {
       const t0 = performance.now();
-      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: interp.current, colors, bitmaps, selected });
+      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
       bitmaps.need(px);
       stats.paints++;
       stats.paintMs += performance.now() - t0;
     }
     dirty.clear();
-    if (!interp.settled) raf = requestAnimationFrame(paint);
+    if (!interp.settled || replay.playing()) raf = requestAnimationFrame(paint);
   }
   function onDesign() {
     const design = readDesign(model);
@@ -2567,6 +2767,7 @@ function renderView({ model, el, signal }) {
     stats.framesReceived++;
     const had = view.hasFrame();
     interp.push(frame, performance.now());
+    if (model.get("status") === "running") replay.record(frame);
     if (model.get("status") !== "running") interp.snap();
     redraw(...had === view.hasFrame() ? ["marks"] : ["marks", "over"]);
   }
@@ -2584,6 +2785,9 @@ function renderView({ model, el, signal }) {
     root.dataset.frames = String(Number(model.get("frame_count")) || 0);
     root.dataset.stale = String(!!model.get("stale"));
     root.dataset.kernel = status.kernel();
+    const running = model.get("status") === "running";
+    if (running && !(Number(model.get("frame_count")) > 0)) replay.clear();
+    replay.update(running && status.kernel() !== "gone");
     status.update();
     toolbar.update();
   }
