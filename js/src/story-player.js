@@ -16,9 +16,9 @@ const BACK_CSS = ROOT_CSS + ".story-root>g.unit{display:none}";
 const UNITS_CSS = ROOT_CSS + ".story-root>:not(defs):not(g.unit){display:none}" +
   ".story-root>g.unit{pointer-events:auto}";
 
-function layer(stage, svgText, view, css) {
+function layer(stage, svgText, view, css, kind) {
   const host = document.createElement("div");
-  host.className = "story-layer";
+  host.className = "story-layer story-" + kind;
   host.style.cssText = "position:absolute;inset:0";
   const root = host.attachShadow({ mode: "open" });
   const style = document.createElement("style");
@@ -97,8 +97,8 @@ export function mountStory(el, data, options = {}) {
   bar.append(prev, " ", count, " ", next, speedLabel);
   el.append(stage, bar);
 
-  const backs = data.slides.map(s => layer(stage, s.svg, data.view, BACK_CSS));
-  const fronts = data.slides.map(s => layer(stage, s.svg, data.view, UNITS_CSS));
+  const backs = data.slides.map(s => layer(stage, s.svg, data.view, BACK_CSS, "back"));
+  const fronts = data.slides.map(s => layer(stage, s.svg, data.view, UNITS_CSS, "units"));
 
   function rest(k) {   // slide k's units back at their own places
     const units = data.slides[k].units;

@@ -2,9 +2,9 @@
 var ROOT_CSS = ".story-root{position:absolute;inset:0;width:100%;height:100%;pointer-events:none}";
 var BACK_CSS = ROOT_CSS + ".story-root>g.unit{display:none}";
 var UNITS_CSS = ROOT_CSS + ".story-root>:not(defs):not(g.unit){display:none}.story-root>g.unit{pointer-events:auto}";
-function layer(stage, svgText, view, css) {
+function layer(stage, svgText, view, css, kind) {
   const host = document.createElement("div");
-  host.className = "story-layer";
+  host.className = "story-layer story-" + kind;
   host.style.cssText = "position:absolute;inset:0";
   const root = host.attachShadow({ mode: "open" });
   const style = document.createElement("style");
@@ -74,8 +74,8 @@ function mountStory(el, data, options = {}) {
   speedLabel.append(speed, speedText);
   bar.append(prev, " ", count, " ", next, speedLabel);
   el.append(stage, bar);
-  const backs = data.slides.map((s) => layer(stage, s.svg, data.view, BACK_CSS));
-  const fronts = data.slides.map((s) => layer(stage, s.svg, data.view, UNITS_CSS));
+  const backs = data.slides.map((s) => layer(stage, s.svg, data.view, BACK_CSS, "back"));
+  const fronts = data.slides.map((s) => layer(stage, s.svg, data.view, UNITS_CSS, "units"));
   function rest(k) {
     const units = data.slides[k].units;
     fronts[k].units.forEach((g, i) => place(g, units[i], units[i].slice(5), 1));
