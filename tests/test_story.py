@@ -156,9 +156,14 @@ def test_the_story_json_round_trips_and_a_loaded_story_asks_for_run(story, tmp_p
     loaded = uw.Story.load(path, df)
     assert loaded.to_json() == story.to_json()
     assert [c.design() for c in loaded.charts] == [c.design() for c in story.charts]
+    assert [c.df.index.tolist() for c in loaded.charts] == [c.df.index.tolist() for c in story.charts]
+    with pytest.raises(ValueError, match=r"df lacks 2 of the 10 rows of story slides\[0\]"):
+        uw.Story.load(path, df.iloc[:8])
+    with pytest.raises(ValueError, match=r"df is a list of 2 DataFrames for a story of 3 slides"):
+        uw.Story.load(path, [df, df])
     with pytest.raises(RuntimeError, match=r"slides\[0\] has no layout yet: call story.run\(\)"):
         loaded.save(tmp_path / "story.html")
-    path.write_text('{"schema": "unitopia-story", "version": 1, "slides": [{"design": {}}]}')
+    path.write_text('{"schema": "unitopia-story", "version": 1, "slides": [{"rows": ["r0"], "design": {}}]}')
     with pytest.raises(ValueError, match=r"story slides\[0\]: not a unitopia design"):
         uw.Story.load(path, df)
     path.write_text("{")

@@ -14,6 +14,7 @@ import os
 from numbers import Real
 
 import numpy as np
+import pandas as pd
 
 from .chart import Chart
 from .design.files import read_json
@@ -31,6 +32,18 @@ def _seconds(value, name: str = "seconds") -> float:
     if isinstance(value, bool) or not isinstance(value, Real) or not 0 < value <= 10:
         raise ValueError(f"{name} must be a number of seconds in (0, 10], got {value!r:.40}")
     return float(value)
+
+
+def _rows(df, rows: list, slide: int):
+    """The rows of ``df`` labelled ``rows`` (slide ``slide``'s), else a ValueError naming the missing."""
+    if not isinstance(df, pd.DataFrame):
+        raise TypeError(f"df must be a pandas DataFrame or a list of them, one per slide, got "
+                        f"{type(df).__name__}")
+    missing = pd.Index(rows).difference(df.index)
+    if len(missing):
+        raise ValueError(f"df lacks {len(missing)} of the {len(rows)} rows of story slides[{slide}] "
+                         f"(for one, {missing[0]!r:.60}); pass the DataFrame the story was made from")
+    return df.loc[rows]
 
 
 class Story:
@@ -147,15 +160,17 @@ class Story:
                              f".webm; got {ext!r} in {path!r}")
 
     def to_json(self) -> dict:
-        """``{"schema": "unitopia-story", "version", "seconds", "slides": [{"title",
-        "design"}]}``, the slides in order, each a design JSON."""
+        """``{"schema": "unitopia-story", "version", "seconds", "slides": [{"title", "rows",
+        "design"}]}``: the slides in order, each its DataFrame's index labels and a design JSON."""
         return {"schema": STORY_SCHEMA, "version": STORY_VERSION, "seconds": self.seconds,
-                "slides": [{"title": t, "design": c.design()} for t, c in zip(self.titles, self.charts)]}
+                "slides": [{"title": t, "rows": c.df.index.tolist(), "design": c.design()}
+                           for t, c in zip(self.titles, self.charts)]}
 
     @classmethod
     def from_json(cls, d: dict, df, **kwargs) -> "Story":
-        """A story of ``df`` with the slides of ``d`` (``to_json``), not laid out yet
-        (call ``run()``); ``kwargs`` as for ``Chart`` (device, tooltip, ...)."""
+        """A story with the slides of ``d`` (``to_json``), not laid out yet (call ``run()``).
+        ``df``: one DataFrame, each slide taking the rows it was saved with, or a list of
+        DataFrames, one per slide; ``kwargs`` as for ``Chart`` (device, tooltip, ...)."""
         if not isinstance(d, dict) or d.get("schema") != STORY_SCHEMA:
             raise ValueError(f"not a unitopia story: expected a JSON object with \"schema\": "
                              f"\"{STORY_SCHEMA}\"")
@@ -164,20 +179,29 @@ class Story:
             raise ValueError(f"story: version {version!r} is not one this unitopia-widget reads "
                              f"(1 to {STORY_VERSION})")
         slides = d.get("slides")
-        if not isinstance(slides, list) or not all(isinstance(s, dict) and "design" in s
-                                                   for s in slides):
-            raise ValueError("story: \"slides\" must be a list of {\"title\", \"design\"} objects")
+        if not isinstance(slides, list) or not slides or not all(
+                isinstance(s, dict) and isinstance(s.get("rows"), list) and "design" in s for s in slides):
+            raise ValueError("story: \"slides\" must be a non-empty list of {\"title\", \"rows\", "
+                             "\"design\"} objects")
+        if isinstance(df, (list, tuple)):
+            if len(df) != len(slides):
+                raise ValueError(f"df is a list of {len(df)} DataFrames for a story of "
+                                 f"{len(slides)} slides; give one per slide, or one DataFrame")
+            frames = list(df)
+        else:
+            frames = [_rows(df, s["rows"], i) for i, s in enumerate(slides)]
         charts = []
-        for i, s in enumerate(slides):
+        for i, (s, frame) in enumerate(zip(slides, frames)):
             try:
-                charts.append(Chart.from_design(df, s["design"], **kwargs))
+                charts.append(Chart.from_design(frame, s["design"], **kwargs))
             except ValueError as exc:
                 raise ValueError(f"story slides[{i}]: {exc}") from None
         return cls(charts, titles=[s.get("title") for s in slides], seconds=d.get("seconds", 1.0))
 
     @classmethod
     def load(cls, path, df, **kwargs) -> "Story":
-        """The story saved at ``path`` (``save("story.json")``) over ``df``; call ``run()``."""
+        """The story saved at ``path`` (``save("story.json")``) over ``df`` (one DataFrame
+        or one per slide, as for ``from_json``); call ``run()`` to lay it out."""
         return cls.from_json(read_json(path, "story"), df, **kwargs)
 
     # --- notebook -------------------------------------------------------------------
@@ -188,5 +212,12 @@ class Story:
             self._widget = StoryWidget(self)
         return self._widget
 
+    def __repr__(self) -> str:
+        rows = ", ".join(str(len(c.df)) for c in self.charts)
+        return f"<Story of {len(self)} slides ({rows} rows): {' / '.join(self.titles)}>"
+
     def _repr_mimebundle_(self, **kwargs):
-        return self.widget()._repr_mimebundle_(**kwargs)
+        """The story widget, with a text/plain that says what the story is."""
+        view = self.widget()._repr_mimebundle_(**kwargs)
+        data, metadata = view if isinstance(view, tuple) else (view or {}, {})
+        return {**data, "text/plain": repr(self)}, metadata

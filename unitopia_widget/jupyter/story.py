@@ -22,8 +22,9 @@ class StoryWidget(anywidget.AnyWidget):
 
     def __init__(self, story):
         story.run()
-        super().__init__(story=story.player(), seconds=story.seconds)
+        super().__init__(story=story.player())
         self._story = story
+        self.seconds = story.seconds
 
     @t.validate("index")
     def _check_index(self, proposal):
