@@ -238,3 +238,32 @@ def test_the_page_plays_offline_with_tooltips_and_the_next_button_moves_units(br
     assert page.evaluate("document.scripts.length") == 2
     assert not dialogs and not errors and requests == [path.as_uri()]
     context.close()
+
+
+def test_the_story_widget_carries_the_player_and_keeps_the_speed(story):
+    from traitlets import TraitError
+
+    w = story.widget()
+    assert [len(s["units"]) for s in w.story["slides"]] == [len(c.placements) for c in story.charts]
+    assert len(w.story["transitions"]) == 2 and w.seconds == story.seconds
+    try:
+        w.seconds = 2.5
+        assert story.seconds == 2.5
+    finally:
+        w.seconds = 1.0
+    with pytest.raises(TraitError, match=r"index must be a slide number in \[0, 3\), got 3"):
+        w.index = 3
+    data, _ = story._repr_mimebundle_()
+    assert "application/vnd.jupyter.widget-view+json" in data
+    assert data["text/plain"].startswith("<Story of 3 slides (10, 8, 8 rows): All / By kind")
+
+
+def test_a_story_of_widgets_lays_them_out_and_reads_their_charts():
+    df = pd.DataFrame({"v": np.linspace(1, 3, 6)})
+    slides = [uw.UnitoPia(df, size="v", iterations=20, canvas=CANVAS),
+              uw.UnitoPia(df.iloc[2:], size="v", mark="star", iterations=20, canvas=CANVAS)]
+    story = uw.Story(slides).run()
+    assert all(w.placements is not None and w.status == "done" for w in slides)
+    assert story.charts == [w._chart for w in slides]
+    p = story.plans()[0]
+    assert (p.b < 0).sum() == 2 and (p.a < 0).sum() == 0
