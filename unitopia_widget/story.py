@@ -92,8 +92,10 @@ class Story:
     def run(self) -> "Story":
         """Lay out every slide that has no layout yet (a loaded story has none)."""
         for item, chart in zip(self._items, self.charts):
-            if chart.placements is None:
-                item.run(wait=True) if hasattr(item, "run") else chart.layout()
+            if chart.placements is None and hasattr(item, "run"):
+                item.run(wait=True)   # a widget: its view shows the layout too
+            elif chart.placements is None:
+                chart.layout()
         return self
 
     def _slides(self) -> list[dict]:

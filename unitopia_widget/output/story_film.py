@@ -70,9 +70,12 @@ def render(slides, plans, fps: float, hold: float, seconds: float,
     for k, p in enumerate(plans):
         (_, _, sa), (_, _, sb) = slides[k], slides[k + 1]
         count = transition.frame_count(p, sa, sb, slides[k][0].canvas, round(fps * seconds))
-        kind = np.concatenate([kinds[k][np.maximum(p.a, 0)], kinds[k + 1][np.maximum(p.b, 0)]])
+        kind_a, kind_b = kinds[k][np.maximum(p.a, 0)], kinds[k + 1][np.maximum(p.b, 0)]
+        kind = np.concatenate([kind_a, kind_b])
+        alike = (p.a >= 0) & (p.b >= 0) & (kind_a == kind_b)   # the same sprite in both slides
         for t in np.linspace(0.0, 1.0, count)[1:-1]:
             now_a, now_b = transition.at(p, sa, sb, float(t))
+            now_b[alike & (now_a[:, 5] == 1), 5] = 0.0   # drawn over itself: the one is enough
             states = np.concatenate([now_a, now_b])
             states[:, 3:5] = np.abs(states[:, 3:5])
             out.append(paint.draw(Image.blend(backs[k], backs[k + 1], float(t)), kind, states))
