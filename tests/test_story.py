@@ -1,7 +1,10 @@
 """Tests for uw.Story (story.py, output/transition.py, output/story_film.py,
 output/story_page.py): units keep their row identity across slides, move continuously,
 fade in and out, and the story saves as a film, one HTML page and its design JSON."""
+import json
 import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +19,7 @@ from unitopia_widget.output.export import png_array
 from unitopia_widget.output.story_film import union_view
 
 DATA = Path(__file__).parent / "data" / "marks"
+PLAYER = Path(__file__).resolve().parents[1] / "js" / "src" / "story-player.js"
 HOSTILE = '<img src=x onerror="alert(1)"></script><script>alert(2)</script>'
 CANVAS = (200, 120)
 
@@ -110,6 +114,32 @@ def test_a_changed_mark_cross_fades_and_a_recolour_is_covered():
     assert mid_other[0][0, 5] == pytest.approx(1 - u) and mid_other[1][0, 5] == pytest.approx(u)
     assert 350 < mid_same[0][0, 2] or mid_same[0][0, 2] < 370   # the short way round, through 0
     assert mid_same[0][0, 3] == pytest.approx(8 + 8 * u)          # size interpolated
+
+
+def test_the_browser_player_moves_units_as_the_film_does(story, tmp_path):
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("needs node to run js/src/story-player.js")
+    probe = tmp_path / "probe.mjs"
+    probe.write_text(f"import {{ transitionAt }} from {json.dumps(PLAYER.as_uri())};\n"
+                     "let text = ''; process.stdin.on('data', d => text += d);\n"
+                     "process.stdin.on('end', () => { const {data, times} = JSON.parse(text);\n"
+                     "  const out = data.transitions.map((_, k) => times.map(t => { const got = [];\n"
+                     "    transitionAt(data, k, t, (side, i, s, a) => got.push([side, i, ...s, a]));\n"
+                     "    return got; }));\n"
+                     "  process.stdout.write(JSON.stringify(out)); });\n")
+    times = [0.0, 0.3, 0.55, 0.8, 1.0]
+    run = subprocess.run([node, str(probe)], input=json.dumps({"data": story.player(), "times": times}),
+                         capture_output=True, text=True, timeout=60, check=True)
+    got = json.loads(run.stdout)
+    states = [transition.slide_states(c.placements) for c in story.charts]
+    for k, p in enumerate(story.plans()):
+        for t, drawn in zip(times, got[k]):
+            now_a, now_b = transition.at(p, states[k], states[k + 1], t)
+            want = [[0, int(p.a[m]), *now_a[m]] for m in range(len(p.a)) if p.a[m] >= 0]
+            want += [[1, int(p.b[m]), *now_b[m]] for m in range(len(p.b)) if p.b[m] >= 0]
+            key = lambda r: (r[0], r[1])   # noqa: E731
+            np.testing.assert_allclose(sorted(drawn, key=key), sorted(want, key=key), atol=0.01)
 
 
 @pytest.fixture(scope="module")
