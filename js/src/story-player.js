@@ -82,6 +82,7 @@ export function mountStory(el, data, options = {}) {
   next.textContent = "Next \u2192";
   const count = document.createElement("span");
   count.className = "story-count";
+  count.setAttribute("aria-live", "polite");
   const speedLabel = document.createElement("label");
   speedLabel.textContent = " Transition ";
   const speed = document.createElement("input");
@@ -139,9 +140,10 @@ export function mountStory(el, data, options = {}) {
     }
     el.dataset.moving = "1";
     running_target = target;
-    const start = performance.now(), length = seconds * 1000;
+    const still = window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches;
+    const start = performance.now(), length = still ? 0 : seconds * 1000;
     const step = now => {
-      const s = Math.min(1, (now - start) / length);
+      const s = length > 0 ? Math.min(1, (now - start) / length) : 1;
       frame(k, forward ? s : 1 - s);
       if (s < 1) running = { id: requestAnimationFrame(step) };
       else { running = null; show(target); }

@@ -16,9 +16,14 @@ import pathlib
 from xml.sax.saxutils import escape
 
 SCRIPT = pathlib.Path(__file__).parent.parent / "static" / "story-page.js"
-STYLE = ("body{font-family:sans-serif;margin:16px;color:#222}"
-         ".story-controls{margin-top:8px}.story-count{display:inline-block;min-width:3em;"
-         "text-align:center}")
+STYLE = ("body{font-family:system-ui,sans-serif;margin:0;padding:16px;color:#222;background:#fff}"
+         "#story{max-width:100%;margin:0 auto;outline:none}"
+         ".story-stage{margin:0 auto}"
+         ".story-controls{display:flex;flex-wrap:wrap;align-items:center;gap:8px;justify-content:center;"
+         "margin-top:10px;font-size:14px}"
+         ".story-controls button{font:inherit;padding:4px 12px;border:1px solid #bbb;border-radius:4px;"
+         "background:#f6f6f6;cursor:pointer}.story-controls button:disabled{opacity:.4;cursor:default}"
+         ".story-count{min-width:3em;text-align:center}")
 
 
 def page(data: dict, title: str | None) -> str:

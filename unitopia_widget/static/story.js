@@ -60,6 +60,7 @@ function mountStory(el, data, options = {}) {
   next.textContent = "Next →";
   const count = document.createElement("span");
   count.className = "story-count";
+  count.setAttribute("aria-live", "polite");
   const speedLabel = document.createElement("label");
   speedLabel.textContent = " Transition ";
   const speed = document.createElement("input");
@@ -123,9 +124,10 @@ function mountStory(el, data, options = {}) {
     }
     el.dataset.moving = "1";
     running_target = target;
-    const start = performance.now(), length = seconds * 1e3;
+    const still = window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches;
+    const start = performance.now(), length = still ? 0 : seconds * 1e3;
     const step = (now) => {
-      const s = Math.min(1, (now - start) / length);
+      const s = length > 0 ? Math.min(1, (now - start) / length) : 1;
       frame(k, forward ? s : 1 - s);
       if (s < 1) running = { id: requestAnimationFrame(step) };
       else {
