@@ -224,7 +224,11 @@ def test_bad_input_is_named(story, tmp_path):
 def test_the_page_plays_offline_with_tooltips_and_the_next_button_moves_units(browser, story,
                                                                              tmp_path):
     path = tmp_path / "story.html"
-    story.save(path)
+    seconds, story.seconds = story.seconds, 2.0   # long enough to catch mid-way on a busy machine
+    try:
+        story.save(path)
+    finally:
+        story.seconds = seconds
     text = path.read_text()
     assert "onerror" not in text.split('id="story-data">')[0] and "<script>alert" not in text
     context = browser.new_context(offline=True)
@@ -244,7 +248,7 @@ def test_the_page_plays_offline_with_tooltips_and_the_next_button_moves_units(br
         return page.eval_on_selector("#story", "el => [el.dataset.slide, el.dataset.moving]")
 
     def settle(slide):
-        for _ in range(100):
+        for _ in range(300):
             if state() == [slide, "0"]:
                 return
             page.wait_for_timeout(50)
