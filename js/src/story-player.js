@@ -16,6 +16,23 @@ const BACK_CSS = ROOT_CSS + ".story-root>g.unit{display:none}";
 const UNITS_CSS = ROOT_CSS + ".story-root>:not(defs):not(g.unit){display:none}" +
   ".story-root>g.unit{pointer-events:auto}";
 
+// Defence in depth under the Python sanitiser (io/svgsafe.py), for the widget, which has no
+// page policy: no scripts, foreign content, event handlers, or links but to the document
+// itself and to data: images.
+export function inert(root) {
+  for (const el of Array.from(root.querySelectorAll("script, foreignObject, iframe, object, embed"))) el.remove();
+  for (const el of [root, ...root.querySelectorAll("*")]) {
+    for (const { name, value } of Array.from(el.attributes)) {
+      const link = name === "href" || name.endsWith(":href") || name === "src";
+      if (name.toLowerCase().startsWith("on") ||
+          (link && !value.startsWith("#") && !/^data:image\//i.test(value.trim()))) {
+        el.removeAttribute(name);
+      }
+    }
+  }
+  return root;
+}
+
 function layer(stage, svgText, view, css, kind) {
   const host = document.createElement("div");
   host.className = "story-layer story-" + kind;
@@ -24,7 +41,7 @@ function layer(stage, svgText, view, css, kind) {
   const style = document.createElement("style");
   style.textContent = css;
   const doc = new DOMParser().parseFromString(svgText, "image/svg+xml");
-  const svg = document.importNode(doc.documentElement, true);
+  const svg = document.importNode(inert(doc.documentElement), true);
   svg.classList.add("story-root");
   svg.setAttribute("viewBox", view.join(" "));
   svg.setAttribute("preserveAspectRatio", "xMidYMid meet");

@@ -3,6 +3,18 @@
   var ROOT_CSS = ".story-root{position:absolute;inset:0;width:100%;height:100%;pointer-events:none}";
   var BACK_CSS = ROOT_CSS + ".story-root>g.unit{display:none}";
   var UNITS_CSS = ROOT_CSS + ".story-root>:not(defs):not(g.unit){display:none}.story-root>g.unit{pointer-events:auto}";
+  function inert(root) {
+    for (const el of Array.from(root.querySelectorAll("script, foreignObject, iframe, object, embed"))) el.remove();
+    for (const el of [root, ...root.querySelectorAll("*")]) {
+      for (const { name, value } of Array.from(el.attributes)) {
+        const link = name === "href" || name.endsWith(":href") || name === "src";
+        if (name.toLowerCase().startsWith("on") || link && !value.startsWith("#") && !/^data:image\//i.test(value.trim())) {
+          el.removeAttribute(name);
+        }
+      }
+    }
+    return root;
+  }
   function layer(stage, svgText, view, css, kind) {
     const host = document.createElement("div");
     host.className = "story-layer story-" + kind;
@@ -11,7 +23,7 @@
     const style = document.createElement("style");
     style.textContent = css;
     const doc = new DOMParser().parseFromString(svgText, "image/svg+xml");
-    const svg = document.importNode(doc.documentElement, true);
+    const svg = document.importNode(inert(doc.documentElement), true);
     svg.classList.add("story-root");
     svg.setAttribute("viewBox", view.join(" "));
     svg.setAttribute("preserveAspectRatio", "xMidYMid meet");
