@@ -18,7 +18,7 @@ def test_committed_bundle_matches_a_fresh_build(tmp_path):
         pytest.skip("needs node and `npm --prefix js ci` (esbuild) to rebuild the bundle")
     env = dict(os.environ, UNITOPIA_BUNDLE_DIR=str(tmp_path))
     subprocess.run([node, "build.mjs"], cwd=ROOT / "js", env=env, check=True, timeout=120)
-    for name in ("widget.js", "widget.css"):
+    for name in ("widget.js", "widget.css", "story.js", "story-page.js"):
         fresh = (tmp_path / name).read_bytes()
         committed = (STATIC / name).read_bytes()
         assert fresh == committed, (f"unitopia_widget/static/{name} is stale: run "

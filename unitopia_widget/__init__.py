@@ -17,9 +17,10 @@ from .design.forces import DirectionalForce, PointForce  # noqa: E402
 from .design.marks import Mark  # noqa: E402
 from .design.scene import Layer  # noqa: E402
 from .demo import demo_data  # noqa: E402
+from .story import Story  # noqa: E402
 
 __all__ = ["Chart", "Container", "CurveEmitter", "DirectionalForce", "GridEmitter", "Layer",
-           "Mark", "PointForce", "UnitoPia", "demo_data"]
+           "Mark", "PointForce", "Story", "UnitoPia", "demo_data"]
 __version__ = "0.1.0"
 
 

@@ -19,12 +19,18 @@ def design_code(design: dict, factory: str, df_name: str = "df", var: str = "cha
             f"{var} = {factory}.from_design({df_name}, design)\n")
 
 
-def load_design(path) -> dict:
-    """Read and check a design file; a corrupt or too-new file raises ValueError."""
+def read_json(path, what: str = "design"):
+    """The JSON value in the file at ``path``; a file that is not JSON raises ValueError
+    naming it as the ``what`` file."""
     try:
         with open(path, encoding="utf-8") as f:
-            d = json.load(f)
+            return json.load(f)
     except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
-        raise ValueError(f"design file {os.fspath(path)!r} is not valid JSON: {e}") from None
+        raise ValueError(f"{what} file {os.fspath(path)!r} is not valid JSON: {e}") from None
+
+
+def load_design(path) -> dict:
+    """Read and check a design file; a corrupt or too-new file raises ValueError."""
+    d = read_json(path)
     check_design_header(d)
     return d

@@ -25,6 +25,7 @@ FORMATS = (".gif", ".webp", ".mp4", ".webm")
 VIDEO = {".mp4": ("libx264", {"preset": "veryfast", "crf": "20"}),
          ".webm": ("libvpx-vp9", {"deadline": "realtime", "cpu-used": "8", "crf": "30", "b": "0"})}
 _UNIT = re.compile(r'<g class="unit"[^>]*><title>[^<]*</title><use href="#[^"]*"/></g>\n?')
+_ROOT = re.compile(r'<svg([^>]*?) width="[^"]*" height="[^"]*" viewBox="[^"]*">')
 _VIEW = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
 
 
@@ -48,13 +49,103 @@ def resample(frames: np.ndarray, count: int) -> np.ndarray:
     return frames[lo] * (1 - w) + frames[hi] * w
 
 
-def _sprite(fragment: str, def_id: str, box, size) -> Image.Image:
+def view_of(svg: str) -> tuple[float, float, float, float]:
+    """The root viewBox of an exported SVG: x, y, width, height (canvas px)."""
+    return tuple(float(v) for v in _VIEW.search(svg).groups())
+
+
+def backdrop(svg: str, scale: float = 1.0, view=None) -> Image.Image:
+    """The page of ``svg`` without its units, RGB over white, ``scale`` px per canvas px;
+    ``view`` (x, y, w, h): the box drawn (default: the SVG's own viewBox)."""
+    vx, vy, vw, vh = view_of(svg) if view is None else view
+    page = _UNIT.sub("", svg)
+    if view is not None:   # the same drawing, framed by another box
+        page = _ROOT.sub(f'<svg\\1 width="{vw:.6g}" height="{vh:.6g}" viewBox="{vx:.6g} {vy:.6g} '
+                         f'{vw:.6g} {vh:.6g}">', page, count=1)
+    size = (max(1, int(round(vw * scale))), max(1, int(round(vh * scale))))
+    art = Image.fromarray(png_array(page, (vw, vh), scale), "RGBA")
+    back = Image.new("RGBA", size, "white")
+    back.alpha_composite(art.resize(size) if art.size != size else art)
+    return back.convert("RGB")
+
+
+def sprite(fragment: str, def_id: str, box, size) -> Image.Image:
+    """The mark ``fragment`` (its definition ``def_id``, box ``box`` w, h) drawn at
+    ``size`` px, RGBA."""
     bw, bh = box
     w, h = size
     svg = (f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" width="{w}" '
            f'height="{h}" viewBox="0 0 {bw:.6g} {bh:.6g}" preserveAspectRatio="none">'
            f'<defs>{fragment}</defs><use href="#{def_id}"/></svg>')
     return Image.fromarray(png_array(svg, (w, h)), "RGBA")
+
+
+def arts(chart, table, colors) -> tuple[np.ndarray, list]:
+    """The distinct (layer, mark, colour) of a layout's units: ``(N,)`` index of each
+    unit's art, and per art ``(svg fragment of definition "m", box w, h)``."""
+    by_name = {layer.name: layer for layer in chart.layers}
+    ids, out = {}, []
+    keys = list(zip(table["layer"], table["mark"], colors))
+    for key in keys:
+        if key not in ids:
+            ids[key] = len(ids)
+            mark = by_name[key[0]].marks[key[1]]
+            out.append((mark.svg_fragment("m", key[2]), mark.box_size))
+    return np.array([ids[k] for k in keys], dtype=int), out
+
+
+class Compositor:
+    """Draws units as sprites over a backdrop: each sprite resized, rotated and faded
+    once per (size, angle, opacity) it is drawn at, then pasted.
+
+    ``sprites``: RGBA images, one per art; ``origin``: the canvas point at the top-left
+    pixel; ``scale``: output px per canvas px."""
+
+    OPACITY_STEPS = 32   # opacities are drawn in 1/32 steps
+
+    def __init__(self, sprites: list[Image.Image], origin=(0.0, 0.0), scale: float = 1.0):
+        self.sprites, self.origin, self.scale = sprites, origin, scale
+        self._cache: dict = {}
+        self._fade = [[round(v * q / self.OPACITY_STEPS) for v in range(256)]
+                      for q in range(self.OPACITY_STEPS + 1)]
+
+    def draw(self, back: Image.Image, kind: np.ndarray, states: np.ndarray) -> Image.Image:
+        """``back`` (RGB) with units drawn in order; ``kind`` ``(N,)`` art index, ``states``
+        ``(N, 6)``: x, y (canvas px), angle (degrees clockwise), drawn w, h (canvas px),
+        opacity in [0, 1]."""
+        im = back.copy()
+        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
+        wh = np.rint(states[:, 3:5] * self.scale).astype(int)
+        ang = np.rint(states[:, 2]).astype(int) % 360
+        xy = (states[:, :2] - self.origin) * self.scale
+        fade = np.rint(np.clip(states[:, 5], 0, 1) * self.OPACITY_STEPS).astype(int)
+        cache = self._cache
+        for k, w, h, a, q, x, y in zip(kind.tolist(), wh[:, 0].tolist(), wh[:, 1].tolist(),
+                                       ang.tolist(), fade.tolist(), xy[:, 0].tolist(),
+                                       xy[:, 1].tolist()):
+            if w < 1 or h < 1 or q == 0:
+                continue
+            tile = cache.get((k, w, h, a, q))
+            if tile is None:
+                tile = self._tile(k, w, h, a, q)
+                if len(cache) > 50000:
+                    cache.clear()
+                cache[(k, w, h, a, q)] = tile
+            rgb, alpha, tw, th = tile
+            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
+            core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
+        return im
+
+    def _tile(self, k: int, w: int, h: int, angle: int, q: int) -> tuple:
+        """Sprite ``k`` at ``w`` x ``h`` px rotated ``angle`` degrees clockwise at opacity
+        ``q`` steps: the pixel stores of its RGB and alpha, and its width and height."""
+        tile = self.sprites[k].resize((w, h), Image.BILINEAR)
+        if angle:
+            tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
+        alpha = tile.getchannel("A")
+        if q < self.OPACITY_STEPS:
+            alpha = alpha.point(self._fade[q])
+        return tile.convert("RGB").im, alpha.im, tile.width, tile.height
 
 
 def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[Image.Image]:
@@ -65,70 +156,31 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
         raise RuntimeError("no settling to animate: call run() (or run(wait=True)) first")
     units, table = chart._placed, chart.placements
     frames = resample(chart.frames, int(round(fps * seconds)))
-    vx, vy, vw, vh = (float(v) for v in _VIEW.search(svg).groups())
-    size = (max(1, int(round(vw * scale))), max(1, int(round(vh * scale))))
-    back = Image.new("RGBA", size, "white")
-    page = Image.fromarray(png_array(_UNIT.sub("", svg), (vw, vh), scale), "RGBA")
-    back.alpha_composite(page.resize(size) if page.size != size else page)
-    by_name = {layer.name: layer for layer in chart.layers}
-    keys = list(zip(table["layer"], table["mark"], units.colors))
-    ids, marks = {}, []
-    for key in keys:
-        if key not in ids:
-            ids[key] = len(ids)
-            marks.append(by_name[key[0]].marks[key[1]])
-    kind = np.array([ids[k] for k in keys])
-    # drawn size per frame and unit, output px
-    half = np.stack([units.half_w, units.half_h], axis=1)
-    drawn = 2 * half[None] * frames[:, :, 3:4] * scale              # (F, N, 2)
+    vx, vy = view_of(svg)[:2]
+    back = backdrop(svg, scale)
+    kind, art = arts(chart, table, units.colors)
+    # drawn size per frame and unit, canvas px
+    drawn = 2 * np.stack([units.half_w, units.half_h], axis=1)[None] * frames[:, :, 3:4]
     sprites = []
-    for k, mark in enumerate(marks):
-        big = drawn[:, kind == k].reshape(-1, 2).max(axis=0)
-        px = (max(1, int(np.ceil(big[0]))), max(1, int(np.ceil(big[1]))))
-        sprites.append(_sprite(mark.svg_fragment("m", keys[list(kind).index(k)][2]), "m",
-                               mark.box_size, px))
-    cache: dict = {}
-    out = []
-    back = back.convert("RGB")
-    for f in range(len(frames)):
-        im = back.copy()
-        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
-        wh = np.rint(drawn[f]).astype(int)
-        ang = np.rint(frames[f, :, 2]).astype(int) % 360
-        xy = (frames[f, :, :2] - (vx, vy)) * scale
-        for n, (k, w, h, a, x, y) in enumerate(zip(kind.tolist(), wh[:, 0].tolist(), wh[:, 1].tolist(),
-                                                    ang.tolist(), xy[:, 0].tolist(), xy[:, 1].tolist())):
-            if w < 1 or h < 1:
-                continue
-            tile = cache.get((k, w, h, a))
-            if tile is None:
-                tile = _tile(sprites[k], w, h, a)
-                if len(cache) > 50000:
-                    cache.clear()
-                cache[(k, w, h, a)] = tile
-            rgb, alpha, tw, th = tile
-            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
-            core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
-        out.append(im)
-    return out
+    for k, (fragment, box) in enumerate(art):
+        big = drawn[:, kind == k].reshape(-1, 2).max(axis=0) * scale
+        sprites.append(sprite(fragment, "m", box, (max(1, int(np.ceil(big[0]))),
+                                                   max(1, int(np.ceil(big[1]))))))
+    paint = Compositor(sprites, (vx, vy), scale)
+    opaque = np.ones((len(kind), 1), np.float32)
+    return [paint.draw(back, kind, np.concatenate([f[:, :3], d, opaque], axis=1))
+            for f, d in zip(frames, drawn)]
 
 
-def _tile(sprite: Image.Image, w: int, h: int, angle: int) -> tuple:
-    """The sprite at ``w`` x ``h`` px rotated ``angle`` degrees clockwise: the pixel stores
-    of its RGB and alpha, and its width and height."""
-    tile = sprite.resize((w, h), Image.BILINEAR)
-    if angle:
-        tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
-    return tile.convert("RGB").im, tile.getchannel("A").im, tile.width, tile.height
-
-
-def write(path: str, images: list[Image.Image], fps: float) -> bytes:
-    """The encoded animation for ``path``'s extension (bytes; the caller writes them)."""
+def write(path: str, images: list[Image.Image], fps: float, palette: Image.Image | None = None) -> bytes:
+    """The encoded animation for ``path``'s extension (bytes; the caller writes them).
+    ``palette``: the image whose colours a GIF keeps (default the last frame)."""
     ext = os.path.splitext(path)[1].lower()
     buf = io.BytesIO()
     ms = max(10, int(round(1000 / fps)))
     if ext == ".gif":   # one palette, the final layout's, for every frame: fast and steady
-        palette = images[-1].quantize(255, method=Image.Quantize.FASTOCTREE)
+        palette = (images[-1] if palette is None else palette).quantize(
+            255, method=Image.Quantize.FASTOCTREE)
         frames = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in images]
         frames[0].save(buf, "GIF", save_all=True, append_images=frames[1:], duration=ms, loop=0)
     elif ext == ".webp":
