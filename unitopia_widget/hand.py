@@ -13,6 +13,7 @@ import pandas as pd
 
 from .design.encodings import tooltip_fields
 from .design.pins import Pin, check_pin, json_label, pin_values, row_labels
+from .design.validate import check_finite
 from .layout.warm import snapshot
 
 
@@ -32,29 +33,37 @@ class HandControl:
         is in the last layout. Every layer drawing a row pins it. A pinned mark is an
         obstacle for every layer in its container and keeps its place in later runs."""
         labels = row_labels(rows)
-        xs, ys, angles = (pin_values(n, v, len(labels)) for n, v in
-                          (("x", x), ("y", y), ("angle", angle)))
-        units = self._units
+        values = [pin_values(n, v, len(labels)) for n, v in (("x", x), ("y", y), ("angle", angle))]
         names = [layer.name for layer in self.layers]
         drawn = {}
-        for li, row in zip(units.layer, units.rows):
+        for li, row in zip(self._units.layer, self._units.rows):
             drawn.setdefault(row, []).append(names[li])
+        keys, where = [], []
+        for label, *at in zip(labels, *values):
+            if label not in drawn:
+                raise KeyError(f"pin: row {label!r:.40} is not drawn by any layer")
+            keys += [(name, label) for name in drawn[label]]
+            where += [at] * len(drawn[label])
+        self.pin_units(keys, *(list(v) for v in zip(*where)))
+
+    def pin_units(self, keys, x, y, angle=None) -> None:
+        """Pin the units ``keys`` (``(layer name, row)`` pairs) at ``x, y`` and ``angle``
+        (lists, one per key; None entries, or None: where the unit is in the last layout)."""
+        angle = [None] * len(keys) if angle is None else angle
         last = {} if self._snapshot is None else {
             (r.layer, r.row): r for r in self._snapshot.itertuples(index=False)}
         new = {}
-        for label, px, py, pa in zip(labels, xs, ys, angles):
-            if label not in drawn:
-                raise KeyError(f"pin: row {label!r:.40} is not drawn by any layer")
-            for name in drawn[label]:
-                now = last.get((name, label))
-                if now is None and (px is None or py is None):
-                    raise RuntimeError(f"pin: row {label!r:.40} has no place yet: run the layout "
-                                       f"first, or give x= and y=")
-                pin = Pin(name, json_label(label), now.x if px is None else px,
-                          now.y if py is None else py,
-                          (now.angle if now is not None else 0.0) if pa is None else pa)
-                check_pin(pin, self.layer(name), self.canvas)
-                new[pin.key] = pin
+        for (name, label), px, py, pa in zip(keys, x, y, angle):
+            now = last.get((name, label))
+            if now is None and (px is None or py is None):
+                raise RuntimeError(f"pin: row {label!r:.40} has no place yet: run the layout "
+                                   f"first, or give x= and y=")
+            pin = Pin(name, json_label(label),
+                      *(check_finite("pin", n, v) for n, v in (
+                          ("x", now.x if px is None else px), ("y", now.y if py is None else py),
+                          ("angle", (now.angle if now is not None else 0.0) if pa is None else pa))))
+            check_pin(pin, self.layer(name), self.canvas)
+            new[pin.key] = pin
         self._pins = {**self._pins, **new}
         self._changed()
 
