@@ -348,7 +348,7 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
     if previous is not None:
         problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
-    problem = pin_problem(problem, layers, pinned, pin_xy, pin_angle)
+    problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every)
     if result.iterations == 0 and abort is not None and abort():

@@ -15,7 +15,9 @@ import numpy as np
 import torch
 
 from ..design.emitters import CurveEmitter
-from .placement import Placement
+from .lattice import Region
+from .start import footprint_radius
+from .warm import free_room, replace_start
 
 
 def pinned_units(units, layers, pins) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -41,22 +43,13 @@ def pinned_units(units, layers, pins) -> tuple[np.ndarray, np.ndarray, np.ndarra
             np.array(angle, dtype=float))
 
 
-def replace_start(place: Placement, center=None, angle=None, movable=None, turnable=None,
-                  drift=None) -> Placement:
-    """A new ``Placement`` like ``place`` with the given starting arrays replaced."""
-    t, theta = place.t.detach().cpu().numpy(), place.theta.detach().cpu().numpy()
-    old_drift = None if place.drift is None else place.drift.cpu().numpy()
-    return Placement(t if center is None else center, theta if angle is None else angle,
-                     place.movable.cpu().numpy() if movable is None else movable,
-                     place.turnable if turnable is None else turnable, place.device,
-                     orientation=place.orientation, orientation_weight=place.orientation_weight,
-                     tracks=place.tracks, drift=old_drift if drift is None else drift)
-
-
-def pin_problem(problem, layers, idx: np.ndarray, xy: np.ndarray, angle: np.ndarray):
+def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
+                angle: np.ndarray):
     """``problem`` with units ``idx (P,)`` held at ``xy (P, 2)``, ``angle (P,)`` radians, and
     drawn into one obstacle slab per (container, scale group) that every layer in the
-    container blocks on."""
+    container blocks on. A free unit that starts with its centre on a pinned mark (or a
+    pinned centre on it), where the overlap would push it nowhere, starts in the nearest
+    free room instead (``warm.free_room``)."""
     if len(idx) == 0:
         return problem
     p, terms = problem, problem.terms
@@ -95,9 +88,29 @@ def pin_problem(problem, layers, idx: np.ndarray, xy: np.ndarray, angle: np.ndar
     turnable = p.placement.turnable.copy()
     drift = np.zeros_like(center) if p.placement.drift is None else p.placement.drift.cpu().numpy()
     center[idx], theta[idx], movable[idx], turnable[idx], drift[idx] = xy, angle, False, False, 0.0
+    _vacate(p, units, layers, canvas, keys, center, idx)
     stage = None if p.stage is None else np.where(np.isin(np.arange(len(layer)), idx), 0, p.stage)
     return dataclasses.replace(
         p, layer=layer, terms=new_terms, forces=list(p.forces) + [[] for _ in slabs],
         scale_group=np.concatenate([group, group[source]]),
         placement=replace_start(p.placement, center, theta, movable, turnable, drift),
         stage=stage)
+
+
+def _vacate(p, units, layers, canvas, keys, center: np.ndarray, idx: np.ndarray) -> None:
+    """Move (in ``center (N, 2)``) the free units whose start sits on a pin ``idx`` of their
+    container (their centres closer than the larger footprint radius) into free room."""
+    group = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
+    scales = np.array([p.scale] if p.group_scale is None else p.group_scale, dtype=float)
+    radius = footprint_radius(units) * scales[group[units.layer]]
+    unit_key = np.array([keys[li] for li in units.layer], dtype=object)
+    pinned = np.isin(np.arange(len(center)), idx)
+    free = p.placement.movable.cpu().numpy() & ~pinned
+    for key in set(unit_key[idx]):
+        mine = unit_key == key
+        pins = idx[unit_key[idx] == key]
+        d = np.hypot(*(center[:, None, :] - center[None, pins, :]).transpose(2, 0, 1))
+        on_pin = mine & free & (d < np.maximum(radius[:, None], radius[None, pins])).any(1)
+        if on_pin.any():
+            region = Region(layers[keys.index(key)].region.coverage(canvas, p.grid.rho), p.grid.rho)
+            center[on_pin] = free_room(region, center, radius, mine & ~on_pin, on_pin)

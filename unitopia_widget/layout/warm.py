@@ -22,8 +22,20 @@ import pandas as pd
 from ..design.encodings import footprint
 from .lattice import Region
 from .pack import STEP, Packing
-from .pins import replace_start
+from .placement import Placement
 from .start import footprint_radius
+
+
+def replace_start(place: Placement, center=None, angle=None, movable=None, turnable=None,
+                  drift=None) -> Placement:
+    """A new ``Placement`` like ``place`` with the given starting arrays replaced."""
+    t, theta = place.t.detach().cpu().numpy(), place.theta.detach().cpu().numpy()
+    old_drift = None if place.drift is None else place.drift.cpu().numpy()
+    return Placement(t if center is None else center, theta if angle is None else angle,
+                     place.movable.cpu().numpy() if movable is None else movable,
+                     place.turnable if turnable is None else turnable, place.device,
+                     orientation=place.orientation, orientation_weight=place.orientation_weight,
+                     tracks=place.tracks, drift=old_drift if drift is None else drift)
 
 
 def snapshot(units, layers, result) -> pd.DataFrame:
@@ -87,7 +99,7 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
         added = inside & ~kept & ~is_pinned & np.array([layers[li].emitter is None for li in units.layer])
         if added.any():
             taken = inside & (kept | is_pinned)
-            center[added] = _free_room(region, center, radius, taken, added)
+            center[added] = free_room(region, center, radius, taken, added)
     stage = None if p.stage is None else np.where(kept, 0, p.stage)
     arriving = ~kept & ~is_pinned & np.array([layers[li].emitter is not None for li in units.layer])
     return dataclasses.replace(
@@ -95,7 +107,7 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
         scale=float(group_scale[0]), stage=stage, travelling=bool(arriving.any()))
 
 
-def _free_room(region: Region, center: np.ndarray, radius: np.ndarray, taken: np.ndarray,
+def free_room(region: Region, center: np.ndarray, radius: np.ndarray, taken: np.ndarray,
                added: np.ndarray) -> np.ndarray:
     """Centres ``(k, 2)`` for the ``added (N,)`` units, largest first: each at the spot
     nearest its fresh start ``center`` whose clearance from the edge and the ``taken (N,)``
