@@ -94,7 +94,7 @@ def main() -> None:
     removed, t = timed(c.layout)
     fresh_removed, t_ref = timed(chart(keep, args.device).layout)
     m, ref = metrics(removed), metrics(fresh_removed)
-    print(f"remove {n - len(keep)}: {t:.2f} s, density {m['density']:.3f} (fresh layout of the "
+    print(f"remove {n - len(keep)}: {t:.2f} s, {c.result.iterations} iterations, density {m['density']:.3f} (fresh layout of the "
           f"same rows {ref['density']:.3f}, {t_ref:.2f} s), overlap {m['overlap_%']:.3f}%, "
           f"median displacement {np.median(moved(base, removed)) / radius:.2f} median radii")
 
@@ -107,8 +107,9 @@ def main() -> None:
     pinned, t = timed(c.layout)
     held = pinned.set_index("row").loc[rows, ["x", "y"]].to_numpy()
     off = float(np.hypot(*(held - spots).T).max())
-    print(f"pins {count}: {t:.2f} s, max distance from pin {off:.3g} px, deepest overlap of a "
-          f"pinned disc {worst_pin_overlap(pinned, rows):.3f} of the radii, overall overlap "
+    print(f"pins {count}: {t:.2f} s, {c.result.iterations} iterations, max distance from pin "
+          f"{off:.3g} px, deepest overlap of a pinned disc {worst_pin_overlap(pinned, rows):.3f} of "
+          f"the radii (of any disc: {worst_pin_overlap(pinned, pinned.row):.3f}), overall overlap "
           f"{metrics(pinned)['overlap_%']:.3f}%")
 
 

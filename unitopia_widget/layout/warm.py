@@ -7,10 +7,11 @@ added since enter from their layer's emitter when it has one; without, each take
 free room nearest where a fresh start would put it (the spot of the container whose
 clearance from the container's edge, the kept marks and the pins holds its footprint
 disc; the roomiest spot when none does). A kept mark whose old centre is now outside
-its container is placed as an added one. Each controlled scale starts where the old
-marks' drawn footprint area covers as much as before (a size change, or rows added or
-removed, moves it by the square root of the area ratio); the solver then lets it grow
-or give way as in any run, so a container emptied by removed rows fills again.
+its container is placed as an added one. Each controlled scale starts where the marks'
+drawn footprint area covers as much as before (rows added, or sizes grown, shrink it by
+the square root of the area ratio), and never above the kept marks' old scale: marks
+start as large as they were, with no overlap, and the controller grows the scale into
+the room removed rows left, as in any run, so the container fills again.
 """
 from __future__ import annotations
 
@@ -68,11 +69,14 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
     foot = units.area * footprint(units.margin) ** 2
     old_group = group_of[[names.index(n) if n in names else 0 for n in previous["layer"]]]
     old_known = previous["layer"].isin(names).to_numpy()
+    ratio = np.sqrt(old["area"].to_numpy(dtype=float) / foot[kept])   # each kept unit's old scale
     for g in np.nonzero(free)[0]:
         before = float(previous["area"][old_known & (old_group == g)].sum())
         now = float(foot[unit_group == g].sum())
-        if before > 0 and now > 0:
-            group_scale[g] = np.sqrt(before / now)
+        mine = unit_group[kept] == g
+        if before > 0 and now > 0 and mine.any():
+            # never above the old scale: the controller grows it into the room it finds
+            group_scale[g] = min(np.sqrt(before / now), float(np.median(ratio[mine])))
     scale = group_scale[unit_group]
     place = p.placement
     center = place.t.detach().cpu().numpy().astype(float)
