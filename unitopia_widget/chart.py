@@ -24,6 +24,7 @@ from .output.export import svg_size, to_png
 from .output.files import atomic_write
 from .output.publish import PageOptions, export_svg
 from .io.images import image_data_url, load_image
+from .hand import HandControl
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
 from .design.files import design_code, load_design
@@ -50,10 +51,11 @@ def check_kwargs(owner: str, kwargs: dict, allowed) -> None:
                             f"{closest(key, allowed)}")
 
 
-class Chart:
+class Chart(HandControl):
     """A pictorial unit chart: ``Chart(df, mark="star", size="Duration", color="Task")``.
 
-    See ``UnitoPia`` for the arguments; ``Chart`` takes the same ones.
+    See ``UnitoPia`` for the arguments; ``Chart`` takes the same ones. Pins, ``set_data``
+    and warm starts: ``hand.HandControl``.
     ``scales="shared"`` (default): one global scale for all layers, so sizes
     stay comparable across layers; ``"independent"``: each layer its own scale,
     so each closed container fills (sizes compare only within a layer).
@@ -238,11 +240,14 @@ class Chart:
 
     # --- layout -------------------------------------------------------------
     def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3,
-               abort=None):
+               abort=None, fresh: bool = False):
         """Solve the layout now; returns the placements table and keeps it, and the
         run's frames in ``frames`` (``(F, N, 4)``, see ``layout.frames``). ``abort()``
-        True during the setup raises ``Cancelled`` and keeps the previous layout."""
+        True during the setup raises ``Cancelled`` and keeps the previous layout.
+        A run after a change starts from the last layout (``fresh=True``: from scratch)."""
         self.bind_check()
+        self._check_pins()
+        origin, inputs = self._start_from(fresh)
         kept = Frames()
 
         def record(frame, *final):   # the runner's callback also takes final=True
@@ -253,8 +258,9 @@ class Chart:
         units, result, table = engine.layout(
             self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
             on_frame=record, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
-            scales=self.scales, abort=abort)
+            scales=self.scales, abort=abort, pins=list(self._pins.values()), previous=origin)
         self._units, self.result, self.placements = units, result, table
+        self._remember_run(origin, inputs, units, result)
         self.frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
         self._placed = units   # the units of the placements, kept when the design changes
         if not result.cancelled:
@@ -361,7 +367,7 @@ class Chart:
         return {"schema": SCHEMA, "version": VERSION, "canvas": list(self.canvas),
                 "background": None if self.background is None else {"image": self.background},
                 "seed": self.seed, "scales": self.scales, **self.page.to_json(),
-                "layers": [layer.to_json() for layer in self.layers]}
+                "layers": [layer.to_json() for layer in self.layers], **self._pins_json()}
 
     @classmethod
     def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "Chart":
@@ -416,9 +422,11 @@ class Chart:
         if len(set(names)) != len(names):
             raise ValueError(f"design: layer names must be unique, got {names}")
         units = self._check(layers, canvas)
+        pins = self._read_pins(d, layers, units, canvas)
         for layer in layers:
             layer._on_change = self._layer_changed
         self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
+        self._pins = pins
         self.page, self.scales = page, scales
         self._units = units
         self._changed()

@@ -1,10 +1,11 @@
 // Paints what sits above the marks: emitters (grid: a hatched hint over the container;
 // curve: the Bezier with its control handles), forces (point: a dot; direction: an
-// arrow), the picked object's highlight, and the active tool's preview. `guides`
-// false leaves out the emitters and forces (the finished marks show alone).
+// arrow), the picked object's highlight, a pin on every pinned mark, and the active
+// tool's preview. `guides` false leaves out the emitters and forces (the finished marks
+// show alone); the pins stay. `pins`: {list: unit indices, frame: (N, 4) x, y, angle, scale}.
 import { containerPath, directionArrow, emitterPolyline, layerColor } from "./shapes.js";
 
-export function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true }) {
+export function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true, pins = null }) {
   design.layers.forEach((layer, i) => {
     const active = i === current;
     ctx.globalAlpha = active ? 1 : 0.4;
@@ -21,7 +22,30 @@ export function drawOverlay(ctx, { design, current, picked, unit, tool, guides =
     if (active && picked && picked.kind === "container") highlightContainer(ctx, layer.container, design.canvas, unit);
   });
   ctx.globalAlpha = 1;
+  if (pins && pins.frame) for (const i of pins.list) if (4 * i + 1 < pins.frame.length) drawPin(ctx, pins.frame[4 * i], pins.frame[4 * i + 1], unit);
   if (tool && tool.preview) tool.preview(ctx, unit);
+}
+
+/** A map pin standing on (x, y): a red head on a short needle, outlined in white. */
+export function drawPin(ctx, x, y, unit) {
+  const r = 4 * unit;
+  const top = y - 9 * unit;
+  ctx.lineWidth = 1.5 * unit;
+  ctx.strokeStyle = "#fff";
+  ctx.beginPath();
+  ctx.moveTo(x, y);
+  ctx.lineTo(x, top);
+  ctx.stroke();
+  ctx.strokeStyle = "#333";
+  ctx.lineWidth = unit;
+  ctx.stroke();
+  ctx.beginPath();
+  ctx.arc(x, top, r, 0, 2 * Math.PI);
+  ctx.fillStyle = "#d93025";
+  ctx.fill();
+  ctx.lineWidth = 1.5 * unit;
+  ctx.strokeStyle = "#fff";
+  ctx.stroke();
 }
 
 function drawEmitter(ctx, layer, canvas, color, active, unit) {

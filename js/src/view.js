@@ -35,7 +35,7 @@ export function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null;
+  let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = new Set();
   let raf = 0;
 
@@ -60,6 +60,10 @@ export function renderView({ model, el, signal }) {
     undo: () => undo(model),
     redo: () => redo(model),
     hasFrame: () => !!interp.to,
+    /** The shown layout: Float32Array (N, 4) x, y, angle, scale (null before a run). */
+    frame: () => interp.to,
+    units: () => units,
+    selected: () => selected,
     hit: (p) => hitIndex().query(p[0], p[1]),
     marksInPolygon: (pts) => hitIndex().inPolygon(pts),
     toggleSelect(indices, additive) {
@@ -126,7 +130,7 @@ export function renderView({ model, el, signal }) {
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
     if (dirty.has("over")) {
       const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
-      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides });
+      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides, pins: { list: pinned, frame: interp.to } });
     }
     if (dirty.has("marks")) {
       const t0 = performance.now();
@@ -164,7 +168,7 @@ export function renderView({ model, el, signal }) {
     interp.push(frame, performance.now());
     if (model.get("status") === "running") replay.record(frame);
     if (model.get("status") !== "running") interp.snap();
-    redraw(...(had === view.hasFrame() ? ["marks"] : ["marks", "over"])); // the guides hide once marks show
+    redraw(...(had === view.hasFrame() && !pinned.length ? ["marks"] : ["marks", "over"])); // the guides hide once marks show; pins follow
   }
   function onUnits() {
     units = decodeFloat32(model.get("units"));
@@ -174,6 +178,10 @@ export function renderView({ model, el, signal }) {
   function onSelected() {
     selected = new Set(list(model, "selected_units").map(Number));
     redraw("marks");
+  }
+  function onPinned() {
+    pinned = list(model, "pinned_units").map(Number);
+    redraw("over");
   }
   function onStatus() {
     root.dataset.status = String(model.get("status") || "idle");
@@ -191,6 +199,7 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["change:frame"], onFrame, signal);
   onModel(model, ["change:units", "change:colors"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
+  onModel(model, ["change:pinned_units"], onPinned, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
@@ -214,6 +223,7 @@ export function renderView({ model, el, signal }) {
   bitmaps.update(list(model, "marks"));
   onUnits();
   onSelected();
+  onPinned();
   onStatus();
   onDesign();
   onFrame();

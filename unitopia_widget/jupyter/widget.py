@@ -83,6 +83,7 @@ class UnitoPia(anywidget.AnyWidget):
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend_image = t.Dict().tag(sync=True)             #: {} or {"src": svg data URL, "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
+    pinned_units = t.List(t.Int()).tag(sync=True)      #: unit indices the pins hold
     _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
 
     def __init__(self, df: pd.DataFrame, **kwargs):
@@ -96,6 +97,7 @@ class UnitoPia(anywidget.AnyWidget):
         self._laid_out = None     # the layout-relevant design of the shown layout
         self._error_from = None   # "edit" or "run": what made the current error
         self._frame_error = None  # a frame that could not be sent ends the run as an error
+        self._fresh = False       # the run asked for a fresh start (run(fresh=True))
         self._static = StaticDisplay(self)
         chart.widget = self
         self.fields = _fields(chart.df)
@@ -135,6 +137,24 @@ class UnitoPia(anywidget.AnyWidget):
         """The DataFrame rows of the units selected in the widget."""
         rows = self._chart._units.rows
         return self._chart.df.loc[[rows[i] for i in self.selected_units if 0 <= i < len(rows)]]
+
+    def pin(self, rows, x=None, y=None, angle=None) -> None:
+        """Hold ``rows`` where they are (or at ``x, y`` px, ``angle`` degrees); see ``Chart.pin``."""
+        self._chart.pin(rows, x=x, y=y, angle=angle)
+
+    def unpin(self, rows=None) -> None:
+        """Release the pins of ``rows`` (None: all)."""
+        self._chart.unpin(rows)
+
+    @property
+    def pinned(self) -> pd.DataFrame:
+        """The pins: layer, row, x, y, angle."""
+        return self._chart.pinned
+
+    def set_data(self, df: pd.DataFrame) -> None:
+        """Replace the rows, matched by index; the next run starts from the last layout."""
+        self._chart.set_data(df)
+        self.fields = _fields(df)
 
     def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
         """The laid-out chart as SVG; see ``Chart.to_svg`` for the arguments."""
@@ -201,9 +221,11 @@ class UnitoPia(anywidget.AnyWidget):
         return design_code(self._chart.design(), "uw.UnitoPia", df_name, var="w")
 
     # --- running ------------------------------------------------------------
-    def run(self, wait: bool = False):
+    def run(self, wait: bool = False, fresh: bool = False):
         """Lay out the marks. ``wait=True`` blocks and returns ``placements``;
-        otherwise the layout runs in a thread and the widget animates it."""
+        otherwise the layout runs in a thread and the widget animates it. A run after
+        a change starts from the last layout; ``fresh=True`` starts over."""
+        self._fresh = bool(fresh)
         ticket = self._runner.request()   # a stop() from now on reaches this run
         self._runner.end_current()  # a run while running restarts: the old one ends first
         self._chart.bind_check()
@@ -246,7 +268,7 @@ class UnitoPia(anywidget.AnyWidget):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss}
         try:
             return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
-                                      abort=cancel)
+                                      abort=cancel, fresh=self._fresh)
         except Cancelled:   # stopped before its first step: nothing to keep
             return None
 
@@ -359,7 +381,11 @@ class UnitoPia(anywidget.AnyWidget):
         table = np.stack([units.layer.astype(np.float32), index,
                           (2 * units.half_w).astype(np.float32),
                           (2 * units.half_h).astype(np.float32)], axis=1)
+        names = [layer.name for layer in layers]
+        held = {key for key in self._chart._pins}
         with self.hold_sync():
+            self.pinned_units = [k for k, (li, row) in enumerate(zip(units.layer, units.rows))
+                                 if (names[li], row) in held]
             self.marks = marks
             self.units = np.ascontiguousarray(table, dtype=np.float32).tobytes()
             self.colors = rgba(units.colors).tobytes()
@@ -389,6 +415,8 @@ class UnitoPia(anywidget.AnyWidget):
             self._safe(lambda: self._icons(msg.get("query")))()
         elif kind == "dismiss-error":
             self.dismiss_error()
+        elif kind == "pin":
+            self._safe(lambda: self._pin_units(msg.get("units"), msg.get("x"), msg.get("y")))()
 
     def _safe(self, fn):
         def call():
@@ -397,6 +425,22 @@ class UnitoPia(anywidget.AnyWidget):
             except Exception as exc:
                 self._on_error(exc)
         return call
+
+    def _pin_units(self, index, x, y) -> None:
+        """The front end dropped units ``index`` (into the shown layout) at ``x, y`` px: pin them
+        there (``pinned`` and ``pinned_units`` follow)."""
+        shown = self._chart._snapshot
+        count = 0 if shown is None else len(shown)
+        if not (isinstance(index, list) and isinstance(x, list) and isinstance(y, list)
+                and len(index) == len(x) == len(y)
+                and all(isinstance(i, int) and 0 <= i < count for i in index)):
+            raise ValueError(f"pin message: units, x and y must be lists of equal length with "
+                             f"unit indices under {count} (the units laid out), got {index!r:.60}")
+        self._chart.pin_units([(shown["layer"].iloc[i], shown["row"].iloc[i]) for i in index], x, y)
+        frame = np.frombuffer(self.frame, dtype=np.float32).reshape(-1, 4).copy()
+        if len(frame) == count:   # the dropped marks are shown where they are pinned
+            frame[index, 0], frame[index, 1] = x, y
+            self.frame = frame.tobytes()
 
     def _icons(self, query) -> None:
         """Reply to the mark panel's icon search with up to 30 closest icon names."""

@@ -29,6 +29,8 @@ from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
 from .solver import Cancelled, Problem, Result, solve
 from .start import any_angle, orientation_targets, packed_scales, start_positions
+from .pins import pin_problem, pinned_units
+from .warm import warm_problem
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
@@ -330,16 +332,23 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
 
 
 def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
-           on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None):
+           on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None,
+           pins=(), previous=None):
     """Bind, build and solve. Returns ``(units, result, placements DataFrame)``.
 
     ``cancel()`` returning True ends the solve, which keeps its last step (none taken: the
     start). ``abort()`` (a Stop) returning True during the setup or before the first step
-    raises ``Cancelled``: there is no layout to keep."""
+    raises ``Cancelled``: there is no layout to keep. ``pins``: ``design.pins.Pin``s held
+    in place (``layout.pins``); ``previous``: a ``warm.snapshot`` to start from (None: a
+    fresh start)."""
     units = bind(df, layers)
     _check(abort)
     problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
                             abort=abort)
+    pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
+    if previous is not None:
+        problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
+    problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every)
     if result.iterations == 0 and abort is not None and abort():

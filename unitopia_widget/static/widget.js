@@ -1036,7 +1036,7 @@ function outlineCanvas(ctx, canvas, color) {
 }
 
 // src/draw-overlay.js
-function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true }) {
+function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true, pins = null }) {
   design.layers.forEach((layer, i) => {
     const active = i === current;
     ctx.globalAlpha = active ? 1 : 0.4;
@@ -1053,7 +1053,30 @@ function drawOverlay(ctx, { design, current, picked, unit, tool, guides = true }
     if (active && picked && picked.kind === "container") highlightContainer(ctx, layer.container, design.canvas, unit);
   });
   ctx.globalAlpha = 1;
+  if (pins && pins.frame) {
+    for (const i of pins.list) if (4 * i + 1 < pins.frame.length) drawPin(ctx, pins.frame[4 * i], pins.frame[4 * i + 1], unit);
+  }
   if (tool && tool.preview) tool.preview(ctx, unit);
+}
+function drawPin(ctx, x, y, unit) {
+  const r = 4 * unit;
+  const top = y - 9 * unit;
+  ctx.lineWidth = 1.5 * unit;
+  ctx.strokeStyle = "#fff";
+  ctx.beginPath();
+  ctx.moveTo(x, y);
+  ctx.lineTo(x, top);
+  ctx.stroke();
+  ctx.strokeStyle = "#333";
+  ctx.lineWidth = unit;
+  ctx.stroke();
+  ctx.beginPath();
+  ctx.arc(x, top, r, 0, 2 * Math.PI);
+  ctx.fillStyle = "#d93025";
+  ctx.fill();
+  ctx.lineWidth = 1.5 * unit;
+  ctx.strokeStyle = "#fff";
+  ctx.stroke();
 }
 function drawEmitter(ctx, layer, canvas, color, active, unit) {
   const e = layer.emitter;
@@ -1266,6 +1289,7 @@ var rp = (p) => [round2(p[0]), round2(p[1])];
 function select(view) {
   let grab = null;
   let lasso = null;
+  let drag = null;
   function find(p, design, li) {
     const layer = design.layers[li];
     if (!layer) return null;
@@ -1313,8 +1337,8 @@ function select(view) {
       return updateLayer(design, li, (l) => {
         const pts = l.emitter.points;
         const d = [p[0] - pts[index][0], p[1] - pts[index][1]];
-        const moved = index % 3 === 0 ? [index - 1, index, index + 1] : [index];
-        for (const j of moved) if (pts[j]) pts[j] = rp([pts[j][0] + d[0], pts[j][1] + d[1]]);
+        const moved2 = index % 3 === 0 ? [index - 1, index, index + 1] : [index];
+        for (const j of moved2) if (pts[j]) pts[j] = rp([pts[j][0] + d[0], pts[j][1] + d[1]]);
       });
     }
     return updateLayer(design, li, (l) => {
@@ -1328,8 +1352,10 @@ function select(view) {
       const design = view.design();
       const found = find(p, design, view.layer());
       if (found && found.kind === "mark") {
-        view.toggleSelect([found.index], additive(ev));
         view.pick(null);
+        const sel = view.selected();
+        const indices = ev.shiftKey && sel.has(found.index) ? [...sel] : [found.index];
+        drag = { index: found.index, indices, start: p, at: p, moved: false, additive: additive(ev) };
         return;
       }
       if (found) {
@@ -1342,14 +1368,22 @@ function select(view) {
       lasso.shift = additive(ev);
     },
     move(p) {
-      if (grab) {
+      if (drag) {
+        if (!drag.moved && (dist(p, drag.start) < 2 * view.unit() || view.model.get("status") === "running")) return;
+        drag.moved = true;
+        drag.at = p;
+      } else if (grab) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
         view.setDraft(dragged(p));
       } else if (lasso) lasso.add(p);
     },
     up(p) {
-      if (grab) {
+      if (drag) {
+        if (drag.moved) pinAt(drag, p);
+        else view.toggleSelect([drag.index], drag.additive);
+        drag = null;
+      } else if (grab) {
         if (grab.moved) view.commit(dragged(p));
         view.setDraft(null);
         grab = null;
@@ -1362,7 +1396,7 @@ function select(view) {
     },
     cancel() {
       if (grab) view.setDraft(null);
-      grab = lasso = null;
+      grab = lasso = drag = null;
     },
     /** Delete or Backspace: removes the picked container, force or emitter. */
     deletePicked(picked) {
@@ -1377,10 +1411,36 @@ function select(view) {
       return true;
     },
     preview(ctx, unit) {
+      if (drag && drag.moved) return void moved(drag).forEach(([i, x, y]) => ghost(ctx, i, x, y, unit));
       if (!lasso) return;
       lasso.draw(ctx, { color: "rgba(26, 115, 232, 0.9)", width: 1.5 * unit, closeHint: true });
     }
   };
+  function moved(d, at = d.at) {
+    const frame = view.frame();
+    const [dx, dy] = [at[0] - d.start[0], at[1] - d.start[1]];
+    return d.indices.filter((i) => frame && 4 * i + 1 < frame.length).map((i) => [i, round2(frame[4 * i] + dx), round2(frame[4 * i + 1] + dy)]);
+  }
+  function pinAt(d, p) {
+    const marks = moved(d, p);
+    if (marks.length) view.send({ type: "pin", units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+  }
+  function ghost(ctx, i, x, y, unit) {
+    const units = view.units();
+    const frame = view.frame();
+    if (!units || 4 * i + 3 >= units.length) return;
+    const s = frame[4 * i + 3];
+    const [w, h2] = [units[4 * i + 2] * s, units[4 * i + 3] * s];
+    ctx.save();
+    ctx.translate(x, y);
+    ctx.rotate(frame[4 * i + 2] * Math.PI / 180);
+    ctx.setLineDash([4 * unit, 3 * unit]);
+    ctx.strokeStyle = "rgba(26, 115, 232, 0.9)";
+    ctx.lineWidth = 1.5 * unit;
+    ctx.strokeRect(-w / 2, -h2 / 2, w, h2);
+    ctx.restore();
+    drawPin(ctx, x, y, unit);
+  }
 }
 function nearest(points, p, r) {
   let best = -1;
@@ -2643,7 +2703,7 @@ function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null;
+  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = /* @__PURE__ */ new Set();
   let raf = 0;
   const view = {
@@ -2671,6 +2731,10 @@ function renderView({ model, el, signal }) {
     undo: () => undo(model),
     redo: () => redo(model),
     hasFrame: () => !!interp.to,
+    /** The shown layout: Float32Array (N, 4) x, y, angle, scale (null before a run). */
+    frame: () => interp.to,
+    units: () => units,
+    selected: () => selected,
     hit: (p) => hitIndex().query(p[0], p[1]),
     marksInPolygon: (pts) => hitIndex().inPolygon(pts),
     toggleSelect(indices, additive2) {
@@ -2733,7 +2797,7 @@ function renderView({ model, el, signal }) {
     if (dirty.has("scene")) drawScene(stage.begin("scene"), stage, design, view.layer(), images);
     if (dirty.has("over")) {
       const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
-      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides });
+      drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides, pins: { list: pinned, frame: interp.to } });
     }
     if (dirty.has("marks")) {
       const t0 = performance.now();
@@ -2769,7 +2833,7 @@ function renderView({ model, el, signal }) {
     interp.push(frame, performance.now());
     if (model.get("status") === "running") replay.record(frame);
     if (model.get("status") !== "running") interp.snap();
-    redraw(...had === view.hasFrame() ? ["marks"] : ["marks", "over"]);
+    redraw(...had === view.hasFrame() && !pinned.length ? ["marks"] : ["marks", "over"]);
   }
   function onUnits() {
     units = decodeFloat32(model.get("units"));
@@ -2779,6 +2843,10 @@ function renderView({ model, el, signal }) {
   function onSelected() {
     selected = new Set(list(model, "selected_units").map(Number));
     redraw("marks");
+  }
+  function onPinned() {
+    pinned = list(model, "pinned_units").map(Number);
+    redraw("over");
   }
   function onStatus() {
     root.dataset.status = String(model.get("status") || "idle");
@@ -2795,6 +2863,7 @@ function renderView({ model, el, signal }) {
   onModel(model, ["change:frame"], onFrame, signal);
   onModel(model, ["change:units", "change:colors"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
+  onModel(model, ["change:pinned_units"], onPinned, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
@@ -2817,6 +2886,7 @@ function renderView({ model, el, signal }) {
   bitmaps.update(list(model, "marks"));
   onUnits();
   onSelected();
+  onPinned();
   onStatus();
   onDesign();
   onFrame();

@@ -1,10 +1,13 @@
 // select: drag emitter handles, forces and containers of the current layer (Delete or
 // Backspace removes the picked one); click a mark to select it (Shift, Ctrl or Cmd toggles); drag on
 // empty space to lasso-select marks. Drags show a draft design and commit once on release.
+// After a run, dragging a mark pins it where it is dropped (a "pin" message: the kernel
+// pins the rows); Shift-dragging a selected mark moves and pins the whole selection.
 import { clone, removeForce, setContainer, setEmitter, translateContainer, updateLayer } from "../design-edit.js";
 import { angleDeg, closeStroke, dist, distToPolyline, round2 } from "../geometry.js";
 import { containerOutline, containerPath, directionArrow, insideContainer } from "../shapes.js";
 import { Stroke } from "./stroke.js";
+import { drawPin } from "../draw-overlay.js";
 
 /** Shift-, Ctrl- or Cmd-click adds to (toggles in) the selection. */
 const additive = (ev) => !!(ev.shiftKey || ev.ctrlKey || ev.metaKey);
@@ -13,6 +16,7 @@ const rp = (p) => [round2(p[0]), round2(p[1])];
 export function select(view) {
   let grab = null; // {kind, index, start, design}
   let lasso = null;
+  let drag = null; // a mark drag: {index, indices, start, at, moved, additive}
 
   function find(p, design, li) {
     const layer = design.layers[li];
@@ -79,8 +83,10 @@ export function select(view) {
       const design = view.design();
       const found = find(p, design, view.layer());
       if (found && found.kind === "mark") {
-        view.toggleSelect([found.index], additive(ev));
         view.pick(null);
+        const sel = view.selected();
+        const indices = ev.shiftKey && sel.has(found.index) ? [...sel] : [found.index];
+        drag = { index: found.index, indices, start: p, at: p, moved: false, additive: additive(ev) };
         return;
       }
       if (found) {
@@ -93,14 +99,22 @@ export function select(view) {
       lasso.shift = additive(ev);
     },
     move(p) {
-      if (grab) {
+      if (drag) {
+        if (!drag.moved && (dist(p, drag.start) < 2 * view.unit() || view.model.get("status") === "running")) return;
+        drag.moved = true;
+        drag.at = p;
+      } else if (grab) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
         view.setDraft(dragged(p));
       } else if (lasso) lasso.add(p);
     },
     up(p) {
-      if (grab) {
+      if (drag) {
+        if (drag.moved) pinAt(drag, p);
+        else view.toggleSelect([drag.index], drag.additive);
+        drag = null;
+      } else if (grab) {
         if (grab.moved) view.commit(dragged(p));
         view.setDraft(null);
         grab = null;
@@ -113,7 +127,7 @@ export function select(view) {
     },
     cancel() {
       if (grab) view.setDraft(null);
-      grab = lasso = null;
+      grab = lasso = drag = null;
     },
     /** Delete or Backspace: removes the picked container, force or emitter. */
     deletePicked(picked) {
@@ -128,10 +142,42 @@ export function select(view) {
       return true;
     },
     preview(ctx, unit) {
+      if (drag && drag.moved) return void moved(drag).forEach(([i, x, y]) => ghost(ctx, i, x, y, unit));
       if (!lasso) return;
       lasso.draw(ctx, { color: "rgba(26, 115, 232, 0.9)", width: 1.5 * unit, closeHint: true });
     },
   };
+
+  /** [unit, x, y] of each dragged mark at the drag's end `at`. */
+  function moved(d, at = d.at) {
+    const frame = view.frame();
+    const [dx, dy] = [at[0] - d.start[0], at[1] - d.start[1]];
+    return d.indices.filter((i) => frame && 4 * i + 1 < frame.length)
+      .map((i) => [i, round2(frame[4 * i] + dx), round2(frame[4 * i + 1] + dy)]);
+  }
+
+  function pinAt(d, p) {
+    const marks = moved(d, p);
+    if (marks.length) view.send({ type: "pin", units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+  }
+
+  /** The outline of unit i's box centred on (x, y), with a pin: where it will be pinned. */
+  function ghost(ctx, i, x, y, unit) {
+    const units = view.units();
+    const frame = view.frame();
+    if (!units || 4 * i + 3 >= units.length) return;
+    const s = frame[4 * i + 3];
+    const [w, h] = [units[4 * i + 2] * s, units[4 * i + 3] * s];
+    ctx.save();
+    ctx.translate(x, y);
+    ctx.rotate((frame[4 * i + 2] * Math.PI) / 180);
+    ctx.setLineDash([4 * unit, 3 * unit]);
+    ctx.strokeStyle = "rgba(26, 115, 232, 0.9)";
+    ctx.lineWidth = 1.5 * unit;
+    ctx.strokeRect(-w / 2, -h / 2, w, h);
+    ctx.restore();
+    drawPin(ctx, x, y, unit);
+  }
 }
 
 function nearest(points, p, r) {

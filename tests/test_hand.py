@@ -1,0 +1,156 @@
+"""Hand control (issue 22): pins held in place as obstacles for every layer of their
+container, data replaced by ``set_data``, runs that start from the last layout, and
+``fresh=True``. One 150-mark layout of two layers in one ellipse, shared by the tests."""
+import json
+import warnings
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.chart import Chart
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+ELLIPSE = uw.Container.ellipse(200, 150, 185, 135)
+
+
+def data(n: int, start: int = 0) -> pd.DataFrame:
+    rng = np.random.default_rng(start + 7)
+    return pd.DataFrame({"v": rng.uniform(1, 3, n), "g": np.where(np.arange(n) % 3, "a", "b")},
+                        index=range(start, start + n))
+
+
+@pytest.fixture(scope="module")
+def base():
+    """A fresh layout of 150 circles: layer "a" blocks on "b", "b" ignores "a"."""
+    chart = Chart(data(150), size="v", by="g", container=ELLIPSE, canvas=(400, 300),
+                  iterations=300)
+    chart.layer("a").set(blocks=["b"])
+    chart.layout()
+    return chart
+
+
+@pytest.fixture
+def chart(base):
+    """A copy of the laid-out base chart for one test to change (its last run included)."""
+    other = Chart.from_design(base.df, base.design())
+    for name in ("placements", "result", "frames", "_units", "_placed", "_snapshot", "_origin", "_ran"):
+        setattr(other, name, getattr(base, name))   # replaced by each run, never changed in place
+    return other
+
+
+def radius(table):
+    return table["width"].to_numpy() / 2
+
+
+def gaps(table, rows):
+    """For each of ``rows``: the smallest gap (px) between its circle and any other,
+    as a share of the two radii (negative: they overlap)."""
+    xy, r = table[["x", "y"]].to_numpy(), radius(table)
+    out = []
+    for k in np.nonzero(table["row"].isin(rows).to_numpy())[0]:
+        d = np.hypot(*(xy - xy[k]).T) - r - r[k]
+        d[k] = np.inf
+        out.append(float(np.min(d / (r + r[k]))))
+    return np.array(out)
+
+
+def displacement(before, after):
+    m = before.merge(after, on=["layer", "row"], suffixes=("", "_2"))
+    return np.hypot(m.x - m.x_2, m.y - m.y_2)
+
+
+def test_a_second_run_with_no_change_gives_identical_placements(chart, base):
+    again = chart.layout()
+    pd.testing.assert_frame_equal(again, base.placements)
+
+
+def test_pinned_rows_stay_on_their_pins_and_every_layer_keeps_off_them(chart):
+    # rows of layer "a" pinned where layer "b" marks are now ("b" does not block on "a")
+    b = chart.placements[chart.placements.layer == "b"]
+    rows = [1, 2, 4]
+    chart.pin(rows, x=b.x.to_numpy()[:3], y=b.y.to_numpy()[:3])
+    table = chart.layout()
+    held = table.set_index("row").loc[rows]
+    pins = chart.pinned.set_index("row").loc[rows]
+    assert np.hypot(held.x - pins.x, held.y - pins.y).max() <= 1.0
+    assert gaps(table, rows).min() > -0.05, "no mark of either layer overlaps a pinned one"
+    assert chart.result.stats["overlap"] < 0.005
+
+
+def test_a_pin_outside_its_container_is_refused_naming_the_row_and_position(chart):
+    with pytest.raises(ValueError, match=r"pin of row 3 at \(5\.0, 5\.0\) is outside"):
+        chart.pin(3, x=5, y=5)
+    assert chart.pinned.empty
+    with pytest.raises(ValueError, match="pin: x has 2 values for 1 rows"):
+        chart.pin([3], x=[100, 120], y=150)
+
+
+def test_pins_default_to_the_current_place_and_are_saved_in_the_design(chart):
+    chart.pin([0, 3])
+    now = chart.placements.set_index("row").loc[[0, 3]]
+    pins = chart.pinned.set_index("row")
+    np.testing.assert_allclose(pins[["x", "y"]].to_numpy(), now[["x", "y"]].to_numpy())
+    design = json.loads(json.dumps(chart.design()))
+    assert [p["row"] for p in design["pins"]] == [0, 3]
+    other = Chart.from_design(data(150), design)
+    pd.testing.assert_frame_equal(other.pinned, chart.pinned)
+    chart.unpin(0)
+    assert chart.pinned.row.tolist() == [3]
+    chart.unpin()
+    assert "pins" not in chart.design(), "a design without pins has no pins field"
+    bad = {**design, "pins": [{"layer": "a", "row": 999, "x": 200, "y": 150}]}
+    with pytest.raises(ValueError, match="row 999 names a row that layer 'a' does not draw"):
+        Chart.from_design(data(150), bad)
+
+
+def test_added_rows_keep_the_old_marks_in_place(chart, base):
+    chart.set_data(pd.concat([data(150), data(8, start=1000)]))
+    table = chart.layout()
+    moved = displacement(base.placements, table)
+    assert len(moved) == 150 and len(table) == 158
+    assert np.median(moved) <= np.median(radius(base.placements))
+    assert chart.result.stats["overlap"] < 0.005
+    # the added rows entered inside the container
+    new = table[table.row >= 1000]
+    assert (((new.x - 200) / 185) ** 2 + ((new.y - 150) / 135) ** 2 < 1).all()
+
+
+def test_removed_rows_disappear_and_the_container_fills_again(chart, base):
+    chart.set_data(data(150).drop(index=range(0, 150, 20)))
+    table = chart.layout()
+    assert len(table) == 150 - 8 and not table.row.isin(range(0, 150, 20)).any()
+    assert chart.result.stats["fill"] >= base.result.stats["fill"] - 0.02
+    assert chart.result.stats["overlap"] < 0.005
+
+
+def test_fresh_starts_over_and_set_data_drops_pins_of_gone_rows(chart, base):
+    chart.pin(0)
+    with pytest.warns(UserWarning, match="pinned row"):
+        chart.set_data(data(150).drop(index=[0]))
+    assert chart.pinned.empty
+    chart.set_data(data(150))
+    pd.testing.assert_frame_equal(chart.layout(fresh=True), base.placements)
+
+
+def test_set_data_refuses_bad_frames_and_keeps_the_old_rows(chart):
+    with pytest.raises(ValueError, match="duplicate index"):
+        chart.set_data(pd.concat([data(3), data(3)]))
+    with pytest.raises(TypeError, match="set_data: df must be a pandas DataFrame"):
+        chart.set_data([1, 2])
+    assert len(chart.df) == 150
+
+
+def test_the_widget_forwards_pins_set_data_and_fresh_runs():
+    w = uw.UnitoPia(data(12), size="v", canvas=(300, 200), iterations=30)
+    w.run(wait=True)
+    w.pin(2)
+    assert w.pinned.row.tolist() == [2] and w.pinned_units == [2] and w.stale
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        w.set_data(data(14))
+    w.run(wait=True, fresh=True)
+    assert len(w.placements) == 14
+    assert w.placements.set_index("row").loc[2, "x"] == pytest.approx(w.pinned.x[0], abs=1.0)
