@@ -47,7 +47,8 @@ class UnitoPia(anywidget.AnyWidget):
     a list of those, drawn in turn by the rows; or ``{category: spec}`` with ``shape``
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
-    proportional), ``color`` (a column or CSS colour), ``by`` (one layer per value),
+    proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
+    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour), ``by`` (one layer per value),
     ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
