@@ -48,7 +48,7 @@ class UnitoPia(anywidget.AnyWidget):
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
-    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour), ``by`` (one layer per value),
+    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
     ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
