@@ -146,10 +146,16 @@ class UnitoPia(anywidget.AnyWidget):
         """``.svg``, ``.png``, ``.json`` (the design, reload with ``UnitoPia.load``), or the
         settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``, or ``.html`` (one page with tooltips
         and a replay); see ``Chart.save``. Anything but ``.json`` is refused while a layout
-        runs (the status stays): call ``wait()`` or ``stop()`` first."""
-        if self._runner.running and pathlib.Path(path).suffix.lower() != ".json":
+        runs (the status stays): call ``wait()`` or ``stop()`` first. A layout older than
+        the design (``stale``) is saved with a warning."""
+        picture = pathlib.Path(path).suffix.lower() != ".json"
+        if self._runner.running and picture:
             raise RuntimeError(f"cannot save {str(path)[:200]!r} while the layout is running: "
                                f"call w.wait() (or w.stop()) first, then save")
+        if self.stale and picture:
+            warnings.warn(f"saving {str(path)[:200]!r} from a stale layout: the design changed "
+                          f"since it was laid out (w.stale); call w.run(wait=True) first to save "
+                          f"the current design", UserWarning, stacklevel=2)
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline,
                          fps=fps, seconds=seconds)
 
