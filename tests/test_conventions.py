@@ -176,6 +176,10 @@ def test_the_widget_copies_its_design_as_code(sketched):
     scope = {"df": df}
     exec(w.to_code(), scope)
     assert scope["w"].design == w.design == c.design()
+    sent = []
+    w.send = sent.append   # the "copy as Python" button asks; the kernel answers with the code
+    w._on_message(w, {"type": "code"}, [])
+    assert sent == [{"type": "code", "code": w.to_code()}]
 
 
 SHADED = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 30 10">'
