@@ -3,7 +3,7 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
-margins, tall thin marks, blocked layers and emitters (a stack whose layers
+margins, tall thin marks (data-true and on a ``height_range``), blocked layers and emitters (a stack whose layers
 shrink 4x), turning rectangles, line-drawn sketches, hollow rings and a
 container PNG with faint alpha pixels (assets made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
@@ -115,6 +115,15 @@ def design_hair():
     df = pd.DataFrame({"length": rng.lognormal(0, 0.5, 90)})
     c = uw.Container.polygon(blob(400, 300, 300, 170, 0.05, 9))
     return dict(df=df, mark=icon("strand"), height="length", rotate=True, container=c,
+                boundary="closed"), [c]
+
+
+def design_strands(span=None):
+    """Tall strands whose heights spread 94x: data-true, most of the container stays empty;
+    ``span`` (``height_range=``) maps the heights linearly onto that range of px instead."""
+    df = pd.DataFrame({"length": lognormal(90, 94, 5)})
+    c = uw.Container.polygon(blob(400, 300, 300, 220, 0.05, 12))
+    return dict(df=df, mark=icon("strand"), height="length", height_range=span, container=c,
                 boundary="closed"), [c]
 
 
@@ -233,6 +242,7 @@ def design_faint_png():
 
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
+           "strands": design_strands, "strands-range": lambda: design_strands((20, 80)),
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,

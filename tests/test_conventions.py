@@ -176,3 +176,29 @@ def test_the_widget_copies_its_design_as_code(sketched):
     scope = {"df": df}
     exec(w.to_code(), scope)
     assert scope["w"].design == w.design == c.design()
+    sent = []
+    w.send = sent.append   # the "copy as Python" button asks; the kernel answers with the code
+    w._on_message(w, {"type": "code"}, [])
+    assert sent == [{"type": "code", "code": w.to_code()}]
+
+
+SHADED = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 30 10">'
+          '<rect width="10" height="10" fill="#1f3f7f"/><rect x="10" width="10" height="10" '
+          'fill="#6f8fcf"/><rect x="20" width="10" height="10" fill="#cfdfff"/></svg>')
+
+
+def test_color_tints_a_shaded_mark_alike_in_the_export_the_widget_and_the_legend():
+    import base64
+    import re
+    df = pd.DataFrame({"g": ["a", "b", "a"]})
+    w = uw.UnitoPia(df, mark=uw.Mark.svg(SHADED), color="g", iterations=20)
+    w.run(wait=True)
+    a = CATEGORICAL[0]
+    fills = lambda svg: set(re.findall(r'fill="(#[0-9a-f]{6})"', svg))   # noqa: E731
+    tinted = fills(uw.Mark.svg(SHADED).to_svg(a))
+    assert len(tinted) == 3 and "#6f8fcf" not in tinted       # three shades of the category's colour
+    bitmaps = [base64.b64decode(m["src"].split(",", 1)[1]).decode() for m in w.marks]
+    assert any(fills(b) == tinted for b in bitmaps)           # the widget's mark images
+    export = w.to_svg()
+    body, legend = export.split('<g class="legend"', 1)
+    assert tinted <= fills(body) and tinted <= fills(legend)  # the marks and the legend swatch

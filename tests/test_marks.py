@@ -129,15 +129,41 @@ def test_recolouring_a_one_colour_icon_replaces_it():
         assert close(img[y, x], (0, 0xAA, 0))
 
 
-def test_recolouring_a_multicolour_icon_keeps_black_and_white_details():
+def lum(pixel) -> float:
+    return 0.2126 * int(pixel[0]) + 0.7152 * int(pixel[1]) + 0.0722 * int(pixel[2])
+
+
+def test_recolouring_a_multicolour_icon_tints_it_and_keeps_black_and_white_details():
     mark = Mark.svg(DATA / "multicolor.svg")
     img = render_fragment(mark, "#9467bd", px=400)      # 4 squares of 100 px
-    assert close(img[50, 50], (0x94, 0x67, 0xBD))       # orange -> target
-    assert close(img[50, 150], (0x94, 0x67, 0xBD))      # blue (style attribute) -> target
+    orange, blue = img[50, 50], img[50, 150]           # luminance 146 and 105: the median, 125.5
+    assert lum(orange) > lum(blue) + 20                 # their shading stays
+    for pixel in (orange, blue):                        # both the target's hue: purple
+        assert pixel[2] > pixel[0] > pixel[1]
     assert close(img[50, 250], (255, 255, 255))         # white kept
     assert close(img[50, 350], (0, 0, 0))               # black kept
     original = render_fragment(mark, None, px=400)
     assert close(original[50, 50], (0xFF, 0x7F, 0x0E))
+
+
+SHADED = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 60 10"><defs>'
+          '<linearGradient id="g"><stop offset="0" stop-color="#1f3f7f"/>'
+          '<stop offset="1" stop-color="#cfdfff"/></linearGradient></defs>'
+          + "".join(f'<rect x="{10 * i}" width="10" height="10" fill="{c}"/>' for i, c in
+                    enumerate(("#1f3f7f", "#3f5f9f", "#6f8fcf", "#9fbfff", "#cfdfff")))
+          + '<rect x="50" width="10" height="10" fill="url(#g)"/></svg>')
+
+
+def test_a_tint_keeps_every_luminance_level_of_a_shaded_mark_in_order():
+    """A blue mark shaded in five tones and a gradient, tinted red: five distinct, ordered
+    luminances, all red; the gradient still runs dark to light."""
+    img = render_fragment(Mark.svg(SHADED), "#e15759", px=600)   # 6 bands of 100 px
+    levels = [lum(img[50, 100 * i + 50]) for i in range(5)]
+    assert all(b - a > 12 for a, b in zip(levels, levels[1:])), levels
+    for i in range(5):
+        r, g, b = (int(v) for v in img[50, 100 * i + 50][:3])
+        assert r > g and r > b, (i, r, g, b)
+    assert lum(img[50, 590]) - lum(img[50, 510]) > 60   # the gradient's shading
 
 
 @pytest.mark.parametrize("body", [

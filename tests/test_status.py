@@ -189,3 +189,25 @@ def test_the_png_export_button_renders_the_whole_page_with_its_legend(df):
     view = [float(v) for v in re.search(r'viewBox="([^"]+)"', w.to_svg()).group(1).split()]
     assert width == pytest.approx(2 * view[2], abs=3) and height == pytest.approx(2 * view[3], abs=3)
     assert width > 1600                                       # the canvas and its legend
+
+
+def test_saving_a_stale_layout_warns_and_saving_during_a_run_names_wait(df, tmp_path):
+    import warnings
+    w = uw.UnitoPia(df, size="v", iterations=30)
+    w.run(wait=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        w.save(tmp_path / "fresh.svg")               # a current layout: no warning
+    w.layer(0).set(margin=0.2)
+    with pytest.warns(UserWarning, match=r"stale layout.*w\.run\(wait=True\)"):
+        w.save(tmp_path / "old.svg")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        w.save(tmp_path / "design.json")             # the design itself is never stale
+    w.layer(0).set(iterations=5000)
+    w.run()
+    try:
+        with pytest.raises(RuntimeError, match=r"while the layout is running: call w\.wait\(\)"):
+            w.save(tmp_path / "running.png")
+    finally:
+        w.stop()

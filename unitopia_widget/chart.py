@@ -34,7 +34,7 @@ from .design.validate import check_finite, closest
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
-             "legend", "tooltip")
+             "legend", "tooltip", "size_range", "width_range", "height_range")
 SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused

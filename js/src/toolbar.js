@@ -1,5 +1,5 @@
 // The toolbar: one button per tool (data-tool), the actions (data-action: undo, redo,
-// run, stop, export-svg, export-png) and the eraser width.
+// run, stop, export-svg, export-png, copy-code) and the eraser width.
 import { h } from "./dom.js";
 import { TOOLS } from "./tools/index.js";
 
@@ -24,6 +24,7 @@ export function createToolbar(view) {
     stop: action("stop", "Stop the layout", "\u25a0 Stop", () => view.send({ type: "stop" })),
     svg: action("export-svg", "Export SVG", "SVG \u2913", () => view.send({ type: "export", format: "svg" })),
     png: action("export-png", "Export PNG", "PNG \u2913", () => view.send({ type: "export", format: "png" })),
+    code: action("copy-code", "Copy as Python (w.to_code())", "</> Python", () => view.send({ type: "code" })),
   };
   const eraser = h("input", { type: "range", min: "2", max: "80", value: "16", class: "ut-eraser", title: "Eraser width (canvas px)", "aria-label": "Eraser width" });
   const el = h(
@@ -33,7 +34,7 @@ export function createToolbar(view) {
     h("label", { class: "ut-eraser-label", title: "Eraser width" }, "\u232b", eraser),
     h("div", { class: "ut-group" }, buttons.undo, buttons.redo),
     h("div", { class: "ut-group" }, buttons.run, buttons.stop),
-    h("div", { class: "ut-group" }, buttons.svg, buttons.png),
+    h("div", { class: "ut-group" }, buttons.svg, buttons.png, buttons.code),
   );
 
   function update() {

@@ -19,7 +19,7 @@ import { createSettingsPanel } from "./panels/settings.js";
 import { createFieldsPanel } from "./panels/fields.js";
 import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
-import { download } from "./export.js";
+import { copyText, download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
 import { createReplay } from "./replay-control.js";
 
@@ -212,6 +212,10 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["msg:custom"], (msg) => {
     if (msg && msg.type === "export") download(root, msg);
     else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+    else if (msg && msg.type === "code") {
+      copyText(root, String(msg.code || "")).then((ok) =>
+        status.notify(ok ? "Copied the design as Python" : "Press Ctrl+C to copy the selected Python"));
+    }
   }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();

@@ -18,7 +18,7 @@ TOOLS = [
     "select", "container-freehand", "container-rect", "container-ellipse", "emitter-grid",
     "emitter-curve", "force-point", "force-direction", "erase",
 ]
-ACTIONS = ["run", "stop", "undo", "redo", "export-svg", "export-png", "add-layer"]
+ACTIONS = ["run", "stop", "undo", "redo", "export-svg", "export-png", "copy-code", "add-layer"]
 
 
 # --- helpers -------------------------------------------------------------------------
@@ -519,3 +519,23 @@ def test_stage_scales_to_fit_a_narrow_cell_at_high_dpi(browser, page_url):
         assert [c["x"], c["y"], c["w"], c["h"]] == pytest.approx([100, 100, 200, 200], abs=2), "pointer -> canvas px"
     finally:
         context.close()
+
+
+def test_copy_as_python_puts_the_kernels_code_on_the_clipboard_or_in_a_selected_textarea(page):
+    mount(page)
+    page.context.grant_permissions(["clipboard-read", "clipboard-write"])
+    page.click('[data-action="copy-code"]')
+    assert page.evaluate("fake.sent") == [{"type": "code"}]
+    code = "import unitopia_widget as uw\n\ndesign = {'layers': []}\nw = uw.UnitoPia.from_design(df, design)\n"
+    page.evaluate("c => fake.message({type: 'code', code: c})", code)
+    page.wait_for_function("() => document.querySelector('[data-role=notice]').innerText.includes('Copied')")
+    assert page.evaluate("navigator.clipboard.readText()") == code
+    # no clipboard API (an insecure page, an old front end): a selected textarea holds it
+    page.evaluate("Object.defineProperty(navigator, 'clipboard', {value: undefined}); "
+                  "document.execCommand = () => false")
+    page.evaluate("c => fake.message({type: 'code', code: c})", code + "# again\n")
+    area = page.locator("textarea.ut-code")
+    area.wait_for()
+    assert area.input_value() == code + "# again\n"
+    assert page.evaluate("() => { const a = document.querySelector('textarea.ut-code'); "
+                         "return [a.selectionStart, a.selectionEnd] }") == [0, len(code) + 8]

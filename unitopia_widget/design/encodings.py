@@ -129,6 +129,15 @@ def _factor(df, channel, column, n) -> np.ndarray:
     return values / values.mean()
 
 
+def linear_extent(values, span, lo, hi) -> np.ndarray:
+    """Extents (px, shape of ``values``) of a linear scale from the value range ``(lo, hi)``
+    onto ``span = (min_px, max_px)`` (``size_range=`` and the like); ``max_px`` when
+    ``lo == hi``."""
+    values = np.asarray(values, dtype=float)
+    t = np.ones_like(values) if hi <= lo else (values - lo) / (hi - lo)
+    return span[0] + t * (span[1] - span[0])
+
+
 def _order(df, column) -> np.ndarray:
     n = len(df)
     if column is None:
@@ -338,4 +347,6 @@ def warn_small_marks(table: pd.DataFrame, layers) -> None:
     spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
     warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
                   f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
-                  f"(np.log1p) or aggregate rows into fewer, larger marks", stacklevel=3)
+                  f"(np.log1p), map it onto a range of sizes (size_range=(min_px, max_px), or "
+                  f"width_range/height_range) or aggregate rows into fewer, larger marks",
+                  stacklevel=3)

@@ -24,8 +24,9 @@ _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
 BOUNDARIES = ("closed", "open")
 MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
+RANGES = ("size_range", "width_range", "height_range")   # (min_px, max_px) of a linear scale
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
-                "rotate", "blocks", "iterations", "footprint", "name") + CHANNELS
+                "rotate", "blocks", "iterations", "footprint", "name") + CHANNELS + RANGES
 
 
 class Layer:
@@ -43,6 +44,11 @@ class Layer:
     ``footprint``: what a mark collides with; ``"silhouette"`` (default) its ink
     with enclosed holes filled, so a ring keeps other marks out of its middle;
     ``"ink"`` its ink alone, for marks meant to nest. The export draws the ink.
+
+    ``size_range``, ``width_range``, ``height_range``: None (data-true: area or extent
+    proportional to the value) or ``(min_px, max_px)``: the bound column's values map
+    linearly onto mark extents from ``min_px`` to ``max_px`` (not area-true); the global
+    scale then fits them to the container as it does any sizes, keeping their ratio.
     """
 
     def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
@@ -57,6 +63,7 @@ class Layer:
         self.forces, self.blocks = [], []
         self.boundary, self.fill, self.orientation = "closed", None, None
         self.rotate, self.iterations, self.footprint = False, 600, "silhouette"
+        self.size_range = self.width_range = self.height_range = None
         self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
                  fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
                  iterations=iterations, footprint=footprint, **encodings)
@@ -112,6 +119,7 @@ class Layer:
             "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
             "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
             "footprint": self.footprint,
+            **{k: list(getattr(self, k)) for k in RANGES if getattr(self, k) is not None},
         }
 
     @classmethod
@@ -138,7 +146,8 @@ class Layer:
                    boundary=d.get("boundary", "closed"), fill=d.get("fill"),
                    orientation=d.get("orientation"), rotate=d.get("rotate", False),
                    blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
-                   footprint=d.get("footprint", "silhouette"), on_change=on_change, **enc)
+                   footprint=d.get("footprint", "silhouette"), on_change=on_change,
+                   **{k: d[k] for k in RANGES if d.get(k) is not None}, **enc)
 
     def __repr__(self) -> str:
         bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
@@ -334,7 +343,23 @@ _CHECKS = {
     "iterations": _iterations, "name": lambda v: layer_name(v),
     "footprint": lambda v: check_footprint("footprint", v),
     **{c: _channel(c) for c in CHANNELS},
+    **{k: (lambda v, k=k: _range(k, v)) for k in RANGES},
 }
+
+
+def _range(name: str, value):
+    """None, or ``(min_px, max_px)`` as a tuple of floats with ``0 < min_px <= max_px``."""
+    if value is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be None or (min_px, max_px), two numbers, got "
+                         f"{value!r:.60}") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo <= hi):
+        raise ValueError(f"{name} must be (min_px, max_px) with 0 < min_px <= max_px, "
+                         f"got {value!r:.60}")
+    return (lo, hi)
 
 
 def layer_name(value) -> str:

@@ -419,11 +419,15 @@ def uses_current_color(root: ET.Element) -> bool:
 
 
 def recolor(root: ET.Element, color: str) -> None:
-    """Recolour an icon in place to ``color``.
+    """Recolour an icon in place to ``color``, keeping its shading.
 
-    One paint colour: it is replaced. Several: every colour except near-white
-    and near-black is replaced (those stay as details); if all are near-black
-    or near-white, the near-black ones are replaced.
+    One paint colour: it is replaced. Several, some of them neither near-white
+    nor near-black: a tint. The median luminance of those middle colours
+    becomes ``color`` itself; darker paints (gradient stops too) become
+    ``color`` darkened in proportion, lighter ones ``color`` lightened towards
+    white, so every distinct luminance stays distinct and in order, black stays
+    black and white stays white. If all are near-black or near-white, the
+    near-black ones are replaced and the white details stay.
     """
     target = parse_color(color)
     if target is None:
@@ -431,7 +435,25 @@ def recolor(root: ET.Element, color: str) -> None:
     colors = paint_colors(root)
     near_white = {c for c in colors if min(c) >= 230}
     near_black = {c for c in colors if max(c) <= 40}
-    chosen = set(colors) if len(colors) == 1 else \
-        (set(colors) - near_white - near_black) or near_black or set(colors)
+    middle = set(colors) - near_white - near_black
     hex_color = "#%02x%02x%02x" % target
-    _paint_pass(root, lambda rgb, value: hex_color if rgb in chosen else value)
+    if len(colors) == 1 or not middle:
+        chosen = set(colors) if len(colors) == 1 else near_black or set(colors)
+        _paint_pass(root, lambda rgb, value: hex_color if rgb in chosen else value)
+        return
+    base = float(np.median([luma(c) for c in middle]))
+    _paint_pass(root, lambda rgb, value: "#%02x%02x%02x" % shade(target, luma(rgb), base))
+
+
+def luma(rgb) -> float:
+    """Luminance of an sRGB colour, 0 to 255 (Rec. 709 weights on the coded values)."""
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+
+
+def shade(target, lum: float, base: float) -> tuple[int, int, int]:
+    """``target`` (r, g, b) as a paint of luminance ``lum`` in a mark whose middle luminance
+    is ``base`` (0 to 255, ``0 < base < 255``): darkened towards black below ``base``,
+    lightened towards white above, white at 255."""
+    t = np.asarray(target, dtype=float)
+    out = t * lum / base if lum <= base else t + (255.0 - t) * (lum - base) / (255.0 - base)
+    return tuple(int(round(v)) for v in np.clip(out, 0, 255))

@@ -21,6 +21,7 @@ from ..chart import ARGUMENTS, Chart, check_kwargs
 from ..design.files import design_code, load_design
 from ..design.encodings import rgba
 from ..output.export import svg_size, to_png
+from . import keep
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner
@@ -47,7 +48,8 @@ class UnitoPia(anywidget.AnyWidget):
     a list of those, drawn in turn by the rows; or ``{category: spec}`` with ``shape``
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
-    proportional), ``color`` (a column or CSS colour), ``by`` (one layer per value),
+    proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
+    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
     ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
@@ -62,6 +64,9 @@ class UnitoPia(anywidget.AnyWidget):
     or a position: "right", "bottom", "left", "top", [x, y]; drawn when a channel is bound),
     ``tooltip`` (the tooltip's columns: a list of columns and ``(column, format)`` pairs, or
     a dict ``{column: format}``, e.g. ``["Task", ("Duration", ".1f")]``; default all).
+    ``design_path`` (a design file kept current: when it exists the widget starts from the
+    design in it, not from the arguments, and every edit writes it, so a re-executed
+    notebook keeps its sketch; see ``save_design``).
     ``status`` is "idle", "running", "done", "stopped" or "error"; ``stale`` is True when
     the design changed since the shown layout.
     """
@@ -86,10 +91,14 @@ class UnitoPia(anywidget.AnyWidget):
     pinned_units = t.List(t.Int()).tag(sync=True)      #: unit indices the pins hold
     _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
 
-    def __init__(self, df: pd.DataFrame, **kwargs):
-        check_kwargs("UnitoPia", kwargs, ARGUMENTS)
+    def __init__(self, df: pd.DataFrame, design_path=None, **kwargs):
+        check_kwargs("UnitoPia", kwargs, ARGUMENTS + ("design_path",))
         chart = _SyncedChart(df, **kwargs)
+        design_path = None if design_path is None else pathlib.Path(design_path)
+        if design_path is not None and design_path.exists():
+            chart.apply_design(load_design(design_path))   # the kept sketch wins
         super().__init__(_session_id=uuid.uuid4().hex)
+        self._design_path = design_path
         self._chart = chart
         self._runner = Runner()
         self._applying = False
@@ -165,10 +174,16 @@ class UnitoPia(anywidget.AnyWidget):
         """``.svg``, ``.png``, ``.json`` (the design, reload with ``UnitoPia.load``), or the
         settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``, or ``.html`` (one page with tooltips
         and a replay); see ``Chart.save``. Anything but ``.json`` is refused while a layout
-        runs (the status stays): call ``wait()`` or ``stop()`` first."""
-        if self._runner.running and pathlib.Path(path).suffix.lower() != ".json":
+        runs (the status stays): call ``wait()`` or ``stop()`` first. A layout older than
+        the design (``stale``) is saved with a warning."""
+        picture = pathlib.Path(path).suffix.lower() != ".json"
+        if self._runner.running and picture:
             raise RuntimeError(f"cannot save {str(path)[:200]!r} while the layout is running: "
                                f"call w.wait() (or w.stop()) first, then save")
+        if self.stale and picture:
+            warnings.warn(f"saving {str(path)[:200]!r} from a stale layout: the design changed "
+                          f"since it was laid out (w.stale); call w.run(wait=True) first to save "
+                          f"the current design", UserWarning, stacklevel=2)
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline,
                          fps=fps, seconds=seconds)
 
@@ -204,15 +219,32 @@ class UnitoPia(anywidget.AnyWidget):
 
     @classmethod
     def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
-        """A widget for ``df`` with the design saved at ``path``."""
+        """A widget for ``df`` with the design saved at ``path``; edits are written back to
+        ``path`` (``design_path``; pass ``design_path=None`` to keep the file as it is), so
+        a re-executed ``w = UnitoPia.load(path, df)`` restores what was sketched."""
+        kwargs.setdefault("design_path", path)
         return cls.from_design(df, load_design(path), **kwargs)
+
+    @property
+    def design_path(self):
+        """The design file every edit is written to (``pathlib.Path``), or None."""
+        return self._design_path
+
+    def save_design(self, path=None) -> pathlib.Path:
+        """Write the design beside the notebook (default ``<notebook-stem>.unitopia.json``) or
+        to ``path``, and keep that file current from now on (``design_path``); a re-executed
+        ``w = uw.UnitoPia.load(path, df)`` then restores it. Returns the path."""
+        self._design_path = keep.default_path() if path is None else pathlib.Path(path)
+        return keep.write(self._design_path, self._chart.design())
 
     @classmethod
     def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":
         """A widget for ``df`` with ``design`` (a design JSON dict, as ``w.design``)."""
         kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
+        path = kwargs.pop("design_path", None)
         w = cls(df, **kwargs)
         w._chart.apply_design(design)
+        w._design_path = None if path is None else pathlib.Path(path)
         return w
 
     def to_code(self, df_name: str = "df") -> str:
@@ -362,6 +394,8 @@ class UnitoPia(anywidget.AnyWidget):
         laid_out = self._laid_out is not None and self.placements is not None
         self.stale = laid_out and _layout_key(self.design) != self._laid_out
         self._push_extras()
+        if self._design_path is not None:
+            keep.write(self._design_path, self.design)
 
     def _push_units(self) -> None:
         units = self._chart._units
@@ -411,6 +445,8 @@ class UnitoPia(anywidget.AnyWidget):
             threading.Thread(target=self._safe(self.stop), daemon=True).start()
         elif kind == "export":
             self._safe(lambda: self._export(msg.get("format")))()
+        elif kind == "code":   # the "copy as Python" button: the front end copies it
+            self._safe(lambda: self.send({"type": "code", "code": self.to_code()}))()
         elif kind == "icons":
             self._safe(lambda: self._icons(msg.get("query")))()
         elif kind == "dismiss-error":

@@ -21,7 +21,7 @@ import torch
 
 from .atlas import SpriteAtlas
 from ..design.encodings import (Encoded, check_column, continuous_values, encode, footprint,
-                                is_continuous, missing_warning, palette_for, unhashable)
+                                linear_extent, is_continuous, missing_warning, palette_for, unhashable)
 from ..design.groups import mark_choice
 from .losses import CanvasTerms, sweep_of
 from .placement import Placement
@@ -103,9 +103,17 @@ def bind(df: pd.DataFrame, layers) -> Units:
                               color=e["color"], margin=e["margin"], order=e["order"],
                               palette=palettes.get(e["color"]), domain=domains.get(e["color"]))
         for attr, channel in (("area", "size"), ("width", "width"), ("height", "height")):
+            span = getattr(layer, f"{channel}_range")
+            if span is not None and e[channel] is None:
+                raise ValueError(f"layer {layer.name!r}: {channel}_range={span!r} needs "
+                                 f"{channel}=<column>; bind {channel} to a numeric column, or "
+                                 f"set {channel}_range=None")
             if e[channel] is not None:   # encode normalises per layer; keep layers comparable
                 column = sub[e[channel]].to_numpy(dtype=float)
-                setattr(enc, attr, getattr(enc, attr) * column.mean() / _positive_mean(df[e[channel]]))
+                if span is None:
+                    setattr(enc, attr, getattr(enc, attr) * column.mean() / _positive_mean(df[e[channel]]))
+                else:   # linear extents over the whole column's range; size is their square
+                    setattr(enc, attr, _ranged(column, df[e[channel]], span, channel == "size"))
         choice = mark_choice(df, sub, layer)
         feet = [m.as_footprint(layer.footprint) for m in layer.marks]   # what collides
         sprite = np.array([sprites.setdefault(m, len(sprites)) for m in feet])[choice]
@@ -122,6 +130,16 @@ def bind(df: pd.DataFrame, layers) -> Units:
                  margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
                  colors=[c for p in parts for c in p[3].colors],
                  mark=cat(lambda p: p[4]), sprite=cat(lambda p: p[5]), sprites=list(sprites))
+
+
+def _ranged(values: np.ndarray, series: pd.Series, span, squared: bool) -> np.ndarray:
+    """``(n,)`` factors of ``values`` on the linear scale ``span`` over the finite, positive
+    values of ``series`` (mean 1 over the column), squared for an area."""
+    full = series.to_numpy(dtype=float, na_value=np.nan)
+    full = full[np.isfinite(full) & (full > 0)]
+    power = 2 if squared else 1
+    mapped = linear_extent(values, span, full.min(), full.max()) ** power
+    return mapped / (linear_extent(full, span, full.min(), full.max()) ** power).mean()
 
 
 def _positive_mean(series: pd.Series) -> float:

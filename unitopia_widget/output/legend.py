@@ -9,7 +9,9 @@ strips everything) and returns ``(svg_text, width, height)`` in canvas px.
 Every entry is a ``<g class="legend-entry" data-channel=... data-value=...>``.
 Size entries are area-true: the mark drawn for value v has the box area that a
 unit of value v has in the chart (the layer's own box area per unit of value,
-taken from the placed units, so it holds at the final scale).
+taken from the placed units, so it holds at the final scale). A layer with a
+``size_range`` has a linear size legend instead, titled with the drawn px of its
+range and "not area-true"; a ``width_range``/``height_range`` is named in the unit key.
 """
 from __future__ import annotations
 
@@ -19,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from ..design.encodings import (continuous_values, is_css_color, is_continuous, is_temporal,
-                                palette_for)
+                                linear_extent, palette_for)
 from ..design.groups import sorted_categories
 from ..design.marks import Mark
 
@@ -145,8 +147,8 @@ def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray, room: float = n
     out = []
     out.extend(_color_sections(rows, layers, units))
     out.extend(_shape_sections(rows, layers, units))
-    out.extend(_size_sections(rows, layers, units, boxes, room))
-    out.append(_unit_key(layers, units))
+    out.extend(_size_sections(df, rows, layers, units, boxes, room))
+    out.append(_unit_key(df, rows, layers, units, boxes))
     return out
 
 
@@ -231,13 +233,15 @@ def _layers_note(layers, users) -> str:
     return f" (layer{'s' if len(names) > 1 else ''} {', '.join(names)})"
 
 
-def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
+def _size_sections(df, rows, layers, units, boxes, room) -> list[Section]:
     """One section per size column; layers sharing a column and its area per value share it."""
     out = []
     by_column: dict = {}
     for i, layer in enumerate(layers):
         c = layer.encodings["size"]
-        if isinstance(c, str) and c in rows.columns:
+        if isinstance(c, str) and c in rows.columns and layer.size_range is not None:
+            out.append(_linear_size_section(df, rows, layers, units, boxes, i, room))
+        elif isinstance(c, str) and c in rows.columns:
             mine = units.layer == i
             values = rows[c].to_numpy(dtype=float)[mine]
             # silhouette area per unit of value: the same for layers whose sizes are shared
@@ -269,14 +273,64 @@ def _size_sections(rows, layers, units, boxes, room) -> list[Section]:
     return out
 
 
-def _unit_key(layers, units) -> Section:
+def drawn_range(df, rows, layer, units, boxes, i: int, channel: str):
+    """``(px_per_extent, (min_px, max_px))`` of layer ``i``'s ``<channel>_range`` as drawn:
+    the scale's factor from the range's px to the placed marks' px (the box's long side for
+    size, its width or height), and the drawn extents of the column's smallest and largest
+    values."""
+    span, column = getattr(layer, f"{channel}_range"), layer.encodings[channel]
+    mine = units.layer == i
+    values = rows[column].to_numpy(dtype=float)[mine]
+    lo, hi = _value_range(df[column])   # the scale spans the whole column, as in the layout
+    side = {"size": boxes[mine].max(axis=1), "width": boxes[mine, 0],
+            "height": boxes[mine, 1]}[channel]
+    k = float(np.median(side / linear_extent(values, span, lo, hi)))
+    return k, (k * span[0], k * span[1])
+
+
+def _value_range(series) -> tuple[float, float]:
+    """(min, max) of the finite, positive values of a numeric column."""
+    v = series.to_numpy(dtype=float, na_value=np.nan)
+    v = v[np.isfinite(v) & (v > 0)]
+    return float(v.min()), float(v.max())
+
+
+def _linear_size_section(df, rows, layers, units, boxes, i: int, room) -> Section:
+    """The size legend of a layer with a ``size_range``: marks whose long side follows the
+    linear scale as drawn, titled with its drawn px range and "not area-true"."""
+    layer = layers[i]
+    c, span = layer.encodings["size"], layer.size_range
+    k, (lo_px, hi_px) = drawn_range(df, rows, layer, units, boxes, i, "size")
+    lo, hi = _value_range(df[c])
+    mark, color = layer.mark, neutral(layer, units, i)
+    sec = Section(f"Size: {clip(c)} (linear {lo_px:.3g}-{hi_px:.3g} px, not area-true)"
+                  f"{_layers_note(layers, [i])}")
+    for v in round_values(lo, hi):
+        long = k * float(linear_extent(v, span, lo, hi))
+        w, h = (long, long / mark.aspect) if mark.aspect >= 1 else (long * mark.aspect, long)
+        sec.entries.append(Entry("size", _number(v), _number(v), mark, color, w, h))
+    if sum(e.h for e in sec.entries) > room:
+        sec.entries = [sec.entries[0], sec.entries[-1]]
+    return sec
+
+
+def _range_note(df, rows, layer, units, boxes, i: int, channel: str) -> str:
+    """`` (linear a-b px)`` for a channel with a range, as drawn; else ``""``."""
+    if getattr(layer, f"{channel}_range", None) is None:
+        return ""
+    _, (lo_px, hi_px) = drawn_range(df, rows, layer, units, boxes, i, channel)
+    return f" (linear {lo_px:.3g}-{hi_px:.3g} px, not data-true)"
+
+
+def _unit_key(df, rows, layers, units, boxes) -> Section:
     n = len(units.rows)
     sec = Section(f"1 mark = 1 row ({n} rows)")
     for i, layer in enumerate(layers):
         count = int((units.layer == i).sum())
         color = neutral(layer, units, i)
         # channels that have no section of their own (color, shape and size do)
-        bound = [f"{k}: {clip(v, 20)}" for k, v in layer.encodings.items()
+        bound = [f"{k}: {clip(v, 20)}{_range_note(df, rows, layer, units, boxes, i, k)}"
+                 for k, v in layer.encodings.items()
                  if isinstance(v, str) and k not in ("color", "shape", "size")]
         # one layer: its name (an internal "layer-1") says nothing the title does not
         named = f"{clip(layer.name, 30)}{_rows_label(layer)}: " if len(layers) > 1 else ""

@@ -1695,7 +1695,8 @@ function createToolbar(view) {
     run: action("run", "Run the layout", "▶ Run", () => view.run(), "ut-run"),
     stop: action("stop", "Stop the layout", "■ Stop", () => view.send({ type: "stop" })),
     svg: action("export-svg", "Export SVG", "SVG ⤓", () => view.send({ type: "export", format: "svg" })),
-    png: action("export-png", "Export PNG", "PNG ⤓", () => view.send({ type: "export", format: "png" }))
+    png: action("export-png", "Export PNG", "PNG ⤓", () => view.send({ type: "export", format: "png" })),
+    code: action("copy-code", "Copy as Python (w.to_code())", "</> Python", () => view.send({ type: "code" }))
   };
   const eraser = h("input", { type: "range", min: "2", max: "80", value: "16", class: "ut-eraser", title: "Eraser width (canvas px)", "aria-label": "Eraser width" });
   const el = h(
@@ -1705,7 +1706,7 @@ function createToolbar(view) {
     h("label", { class: "ut-eraser-label", title: "Eraser width" }, "⌫", eraser),
     h("div", { class: "ut-group" }, buttons.undo, buttons.redo),
     h("div", { class: "ut-group" }, buttons.run, buttons.stop),
-    h("div", { class: "ut-group" }, buttons.svg, buttons.png)
+    h("div", { class: "ut-group" }, buttons.svg, buttons.png, buttons.code)
   );
   function update() {
     const s = view.session;
@@ -2419,6 +2420,32 @@ function download(root, msg) {
   a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 1e4);
 }
+async function copyText(root, text) {
+  try {
+    if (navigator.clipboard && window.isSecureContext) {
+      await navigator.clipboard.writeText(text);
+      return true;
+    }
+  } catch (err) {
+  }
+  const old = root.querySelector("textarea.ut-code");
+  if (old) old.remove();
+  const area = document.createElement("textarea");
+  area.className = "ut-code";
+  area.readOnly = true;
+  area.value = text;
+  area.setAttribute("aria-label", "The design as Python");
+  root.append(area);
+  area.select();
+  let copied = false;
+  try {
+    copied = document.execCommand("copy");
+  } catch (err) {
+    copied = false;
+  }
+  if (copied) area.remove();
+  return copied;
+}
 
 // src/workspace.js
 var editing = (tool) => typeof tool === "string" && tool !== "select";
@@ -2876,6 +2903,9 @@ function renderView({ model, el, signal }) {
   onModel(model, ["msg:custom"], (msg) => {
     if (msg && msg.type === "export") download(root, msg);
     else if (msg && msg.type === "notice") status.notify(String(msg.text || ""));
+    else if (msg && msg.type === "code") {
+      copyText(root, String(msg.code || "")).then((ok) => status.notify(ok ? "Copied the design as Python" : "Press Ctrl+C to copy the selected Python"));
+    }
   }, signal);
   listen(s.bus, "ui", () => {
     updatePanels();

@@ -1,0 +1,61 @@
+"""A design kept beside the notebook: ``design_path=``, ``save_design()`` and
+``UnitoPia.load`` restore a sketch when the notebook is executed again."""
+import copy
+import json
+
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.jupyter import keep
+
+
+@pytest.fixture
+def df():
+    return pd.DataFrame({"v": [1.0, 2.0, 3.0], "k": ["a", "b", "a"]})
+
+
+def sketch(w):
+    """What a front-end edit does: the design trait changes (a lasso container here)."""
+    design = copy.deepcopy(w.design)
+    design["layers"][0]["container"] = uw.Container.polygon(
+        [[40, 40], [300, 60], [250, 300], [60, 260]]).to_json()
+    w.design = design
+    return design
+
+
+def test_a_re_executed_cell_restores_the_sketch_from_its_design_path(df, tmp_path):
+    path = tmp_path / "jar.unitopia.json"
+    w = uw.UnitoPia(df, mark="star", size="v", design_path=path)    # first run: no file yet
+    assert json.loads(path.read_text()) == w.design
+    drawn = sketch(w)
+    assert json.loads(path.read_text())["layers"][0]["container"] == drawn["layers"][0]["container"]
+    again = uw.UnitoPia(df, mark="star", size="v", design_path=path)   # the cell, re-executed
+    assert again.design == w.design and again.layer(0).container.kind == "polygon"
+
+
+def test_load_restores_the_sketch_and_keeps_the_file_current(df, tmp_path):
+    w = uw.UnitoPia(df, mark="star", color="k")
+    path = w.save_design(tmp_path / "x.json")
+    assert path == tmp_path / "x.json" == w.design_path
+    w2 = uw.UnitoPia.load(path, df)               # w = UnitoPia.load("x.json", df)
+    drawn = sketch(w2)
+    w3 = uw.UnitoPia.load(path, df)               # re-executed after sketching
+    assert w3.design == w2.design and w3.design["layers"][0]["container"] == \
+        drawn["layers"][0]["container"]
+    frozen = uw.UnitoPia.load(path, df, design_path=None)
+    frozen.layer(0).set(margin=0.3)
+    assert json.loads(path.read_text())["layers"][0]["encodings"]["margin"] == 0.0
+
+
+def test_save_design_defaults_to_a_file_named_after_the_notebook(df, tmp_path, monkeypatch):
+    monkeypatch.setenv("JPY_SESSION_NAME", str(tmp_path / "Sales 2025.ipynb"))
+    assert keep.default_path() == tmp_path / "Sales 2025.unitopia.json"
+    w = uw.UnitoPia(df)
+    assert w.save_design() == tmp_path / "Sales 2025.unitopia.json"
+    assert uw.UnitoPia.load(tmp_path / "Sales 2025.unitopia.json", df).design == w.design
+    monkeypatch.setenv("JPY_SESSION_NAME", "analysis.ipynb")   # relative: the kernel's folder
+    monkeypatch.chdir(tmp_path)
+    assert keep.default_path() == tmp_path / "analysis.unitopia.json"
+    monkeypatch.delenv("JPY_SESSION_NAME")
+    assert keep.default_path() == tmp_path / "design.unitopia.json"
