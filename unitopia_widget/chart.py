@@ -27,13 +27,14 @@ from .io.images import image_data_url, load_image
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
 from .design.files import design_code, load_design
+from .design.positions import POSITION_CHANNELS, invalid_position_rows
 from .design.upgrade import upgrade
 from .design.validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
-             "legend", "tooltip")
+             "legend", "tooltip", "x", "y", "x_scale", "y_scale", "arrange")
 SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
@@ -87,9 +88,9 @@ class Chart:
             engine.check_column(df, channel, column)
             missing_by |= df[column].isna().to_numpy()
         if opts.pop("dropna", False):
-            bad = invalid_rows(df, opts) | missing_by
+            bad = invalid_rows(df, opts) | invalid_position_rows(df, opts) | missing_by
             if bad.any():
-                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS
+                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS + POSITION_CHANNELS
                          if isinstance(opts.get(c), str) and opts[c] in df.columns]
                 bound += [f"{c}={v!r}" for c, v in categories.items() if df[v].isna().any()]
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
