@@ -301,13 +301,15 @@ class Chart:
         self.page = PageOptions(d["title"], d["caption"], d["legend"])
         self._changed()
 
-    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False,
+               axes: bool = False) -> str:
         """The laid-out chart as SVG text (run the layout first).
 
         ``legend``: None (the chart's setting: shown when a channel is bound), True,
         False, or a position ("right", "bottom", "left", "top", [x, y] canvas px);
         ``title``/``caption``: text drawn above/below (None: the chart's, "" none);
-        ``outline``: draw each layer's container as ``<path class="container">``.
+        ``outline``: draw each layer's container as ``<path class="container">``;
+        ``axes``: draw the axes (or band labels) of ``x=``/``y=`` as ``<g class="axis">``.
         The size legend is area-true at the layout's scale; layers bound to the same
         size column share one size legend, which says so."""
         if self.placements is None:
@@ -324,23 +326,25 @@ class Chart:
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
-        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline)
+        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline,
+                         axes=axes)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
-             fps=None, seconds=None) -> None:
+             fps=None, seconds=None, axes: bool = False) -> None:
         """Write ``.svg`` (the chart), ``.png`` (rendered at 2x), ``.json`` (the design),
         ``.html`` (one page: the SVG with tooltips and a replay of the settling), or
         the last run's settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm`` (``fps`` frames a
         second for ``seconds``; default 20 and 3; video needs the ``[video]`` extra).
-        ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
+        ``legend``, ``title``, ``caption``, ``outline``, ``axes``: as for ``to_svg``."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
         if (fps is not None or seconds is not None) and ext not in animation.FORMATS:
             raise ValueError(f"save: fps and seconds are for an animation "
                              f"({', '.join(animation.FORMATS)}), not {ext!r}")
         if ext in (".svg", ".png", ".html") + animation.FORMATS:
-            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
+            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline,
+                              axes=axes)
         if ext in animation.FORMATS:
             fps, seconds = animation.check_timing(fps, seconds)
             images = animation.render(self, svg, fps, seconds)

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .encodings import MISSING, check_column, continuous_values, is_continuous, sorted_unique
+from .encodings import (MISSING, check_column, continuous_values, is_continuous, is_temporal,
+                        sorted_unique)
 from .validate import check_choice
 
 POSITION_CHANNELS = ("x", "y")
@@ -34,6 +35,7 @@ class Scale:
     column: str
     kind: str
     domain: tuple
+    temporal: bool = False   # a datetime column: the domain is in seconds since 1970
 
     def fraction(self, series: pd.Series) -> tuple[np.ndarray, np.ndarray]:
         """``(t (n,), half (n,))``: each value's place in [0, 1] along the extent, and the
@@ -49,9 +51,6 @@ class Scale:
         lo, hi = _transform(self.kind, np.array(self.domain, dtype=float))
         t = np.full(len(values), 0.5) if hi <= lo else (values - lo) / (hi - lo)
         return t, np.zeros(len(values))
-
-    def to_json(self) -> dict:
-        return {"column": self.column, "kind": self.kind, "domain": list(self.domain)}
 
 
 def _transform(kind: str, values: np.ndarray) -> np.ndarray:
@@ -94,7 +93,7 @@ def position_scale(df: pd.DataFrame, channel: str, column, kind: str = "linear")
                          f"missing, infinite{' or <= 0' if kind == 'log' else ''} (e.g. "
                          f"{values[bad][0]!r}); values must be {need}; pass dropna=True to drop "
                          f"those rows")
-    return Scale(column, kind, (float(values.min()), float(values.max())))
+    return Scale(column, kind, (float(values.min()), float(values.max())), is_temporal(series))
 
 
 def invalid_values(values: np.ndarray, kind: str) -> np.ndarray:

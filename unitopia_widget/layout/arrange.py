@@ -46,13 +46,15 @@ def cells(region: Region, side: float) -> np.ndarray:
 
 def largest_cell(region: Region, count: int, upper: float) -> float:
     """The largest cell side (px, at most ``upper``) at which ``region`` holds ``count``
-    cells (bisection on the log side); ValueError when even a tiny one does not."""
-    lo, hi = upper * 1e-3, upper
+    cells (bisection on the log side, to 0.2%); ValueError when not even cells an eighth
+    of the side that would tile its area do."""
+    hi = min(upper, math.sqrt(region.area / count))   # count cells cannot cover more than the area
+    lo = hi / 8
     if len(cells(region, hi)) >= count:
         return hi
     if len(cells(region, lo)) < count:
         raise ValueError(f"container: too small for a grid of {count} marks")
-    for _ in range(24):
+    for _ in range(12):
         mid = math.sqrt(lo * hi)
         lo, hi = (mid, hi) if len(cells(region, mid)) >= count else (lo, mid)
     return lo
@@ -75,8 +77,7 @@ def grid_scales(units, layers, canvas, group_scale, group_free, scale_group, rho
         g, side = scale_group[i], cell_side(units, idx)
         region = Region(layer.region.coverage(canvas, rho), rho)
         fills = layer.boundary == "closed" and layer.fill is None
-        upper = max(region.bbox[2] - region.bbox[0], region.bbox[3] - region.bbox[1]) if fills \
-            else scale[g] * side
+        upper = math.inf if fills else scale[g] * side
         try:
             fit = largest_cell(region, len(idx), upper) / side
         except ValueError as exc:
