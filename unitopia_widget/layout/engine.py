@@ -279,7 +279,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     if anchor is not None:
         positions.dodge(start.center, units, layers, canvas, footprint_radius(units) * unit_scale,
                         *anchor[:3], lambda idx: emission_ranks(units.order[idx]), rho_start)
-        anchor = positions.Anchor(*anchor, radius=r_mean, device=dev)
+        anchor = positions.Anchor(*anchor, radius=r_mean, device=dev, band=units.band)
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)

@@ -26,9 +26,12 @@ from .pack import STEP, Packing
 from .start import footprint_radius
 
 BIN = 4.0              # scale cap: bins along a bound axis, in median footprint radii
+MAX_BINS = 200         # scale cap: bins along one axis at most
 PACKED = 0.6           # scale cap: the share of a bin's area its discs may need
 ANCHOR_WEIGHT = 0.05   # pull towards the target, relative to overlap (forces use 0.005 at rest)
-BOUND_COST = 10.0      # start: a radius off the target costs as much as this many off the middle
+BAND_PULL = 20.0       # the pull back into a band, times the pull towards a number
+BOUND_COST = 10.0      # start: a px off the target costs as much as this many off the middle
+BAND_COST = 1000.0     # start: a px out of a band costs as much as this many off a number
 
 
 @dataclass
@@ -117,9 +120,11 @@ def anchors(units, layers, canvas, radius, rho: float):
 
 def capped_scales(units, layers, canvas, group_scale, group_free, scale_group, rho: float):
     """``(group_scale, group_free)`` with each scale group holding a layer with position
-    channels fixed at most at the scale where its marks fit near their targets: along the
-    bound axes, cut into bins ``BIN`` footprint radii wide (or the bands), the discs aimed
-    at each bin need at most ``PACKED`` of the container's area in it."""
+    channels fixed at most at the scale where its marks fit near their targets: along each
+    bound axis, cut into bins ``BIN`` median footprint radii wide (or the bands), the discs
+    aimed at each bin need at most ``PACKED`` of the container's area in it. (Two bound
+    axes are checked one by one: where the container has no room at both targets, the
+    marks move aside.)"""
     if units.position is None:
         return group_scale, group_free
     scale, free = np.array(group_scale, dtype=float), np.array(group_free, dtype=bool)
@@ -135,25 +140,22 @@ def capped_scales(units, layers, canvas, group_scale, group_free, scale_group, r
         s = scale[g]
         for _ in range(4):   # the bins widen with the marks: a few rounds settle the scale
             reach = float(np.median(r1[idx])) * s
-            unit_bin, pixel_bin, bins = np.zeros(len(idx), int), np.zeros(len(pixels), int), 1
+            worst = 1.0
             for dim, channel in enumerate(POSITION_CHANNELS):
                 if channel not in scales:
                     continue
                 lo, hi = extent(region, dim, reach)
-                t = units.position[idx, dim]
                 if scales[channel].kind == "band":
                     count = len(scales[channel].domain)
                 else:
-                    count = max(1, int((hi - lo) / (BIN * reach)))
-                k_unit = np.clip((t * count).astype(int), 0, count - 1)
-                k_pixel = np.clip(((pixels[:, dim] - lo) / max(hi - lo, 1e-9) * count).astype(int),
-                                  0, count - 1)
-                unit_bin, pixel_bin, bins = unit_bin * count + k_unit, pixel_bin * count + k_pixel, \
-                    bins * count
-            room = np.bincount(pixel_bin, minlength=bins) / rho ** 2
-            need = np.bincount(unit_bin, weights=np.pi * (r1[idx] * s) ** 2, minlength=bins)
-            used = need > 0
-            worst = float(np.min(PACKED * room[used] / need[used]))
+                    count = int(np.clip((hi - lo) / (BIN * reach), 1, MAX_BINS))
+                unit_bin = np.clip((units.position[idx, dim] * count).astype(int), 0, count - 1)
+                pixel_bin = np.clip(((pixels[:, dim] - lo) / max(hi - lo, 1e-9) * count)
+                                    .astype(int), 0, count - 1)
+                room = np.bincount(pixel_bin, minlength=count) / rho ** 2
+                need = np.bincount(unit_bin, weights=np.pi * (r1[idx] * s) ** 2, minlength=count)
+                used = need > 0
+                worst = min(worst, float(np.min(PACKED * room[used] / need[used])))
             if worst >= 1.0:
                 break
             s *= math.sqrt(max(worst, 1e-6))
@@ -163,17 +165,20 @@ def capped_scales(units, layers, canvas, group_scale, group_free, scale_group, r
 
 
 class Anchor:
-    """The pull of anchored units towards their targets: ``weight`` x the mean over them
-    of a Huber loss (quadratic within one mean radius) on the distance past the band's
-    half width, in mean radii. ``target``, ``tol``: ``(N, 2)`` canvas px; ``mask`` ``(N, 2)``."""
+    """The pull of anchored units towards their targets: ``ANCHOR_WEIGHT`` x the mean over
+    them of a Huber loss (quadratic within one mean radius) on the distance past the band's
+    half width, in mean radii; ``BAND_PULL`` times stronger out of a band (a category is
+    kept, a number is near). ``target``, ``tol``: ``(N, 2)`` canvas px; ``mask`` ``(N, 2)``
+    bool; ``band`` ``(N, 2)`` half band widths (``Units.band``)."""
 
-    def __init__(self, target, tol, mask, axes, radius: float, device, weight=ANCHOR_WEIGHT):
+    def __init__(self, target, tol, mask, axes, radius: float, device, band=None):
         dev = torch.device(device)
         self.target = torch.tensor(np.where(mask, target, 0.0), dtype=torch.float32, device=dev)
         self.tol = torch.tensor(tol, dtype=torch.float32, device=dev)
-        self.mask = torch.tensor(mask, dtype=torch.float32, device=dev)
+        pull = mask * np.where(band > 0, BAND_PULL, 1.0) if band is not None else mask
+        self.mask = torch.tensor(pull, dtype=torch.float32, device=dev)
         self.count = max(int(mask.any(axis=1).sum()), 1)
-        self.axes, self.radius, self.weight = axes, float(radius), float(weight)
+        self.axes, self.radius, self.weight = axes, float(radius), ANCHOR_WEIGHT
 
     def loss(self, center: torch.Tensor) -> torch.Tensor:
         """Scalar loss of ``center (N, 2)``."""
@@ -198,6 +203,8 @@ def dodge(center: np.ndarray, units, layers, canvas, radius, target, tol, mask, 
         if tree is None:
             raise ValueError(f"layer {layer.name!r}: its container has no room to place marks in")
         free_cost = _middle_cost(region, pts, mask[idx[0]])
+        # a band is a category: leaving it misreads the mark, moving along a number does not
+        weight = BOUND_COST * np.where(units.band[idx[0]] > 0, BAND_COST, 1.0) * mask[idx[0]]
         dim = int(np.argmax(mask[idx[0]]))   # spots sorted along a bound axis: a window on it
         by_axis = np.argsort(pts[:, dim], kind="stable")
         axis = pts[by_axis, dim]
@@ -208,11 +215,10 @@ def dodge(center: np.ndarray, units, layers, canvas, radius, target, tol, mask, 
                 # a spot farther than ``width`` off along ``dim`` costs more than BOUND_COST x width
                 lo, hi = np.searchsorted(axis, [target[u, dim] - width, target[u, dim] + width])
                 near = by_axis[lo:hi]
-                off = np.maximum(np.abs(pts[near] - target[u]) - tol[u], 0.0) * mask[u]
-                cost = np.where(clear[near] >= ru, BOUND_COST * off.sum(axis=1) + free_cost[near],
-                                np.inf)
+                off = np.maximum(np.abs(pts[near] - target[u]) - tol[u], 0.0)
+                cost = np.where(clear[near] >= ru, off @ weight + free_cost[near], np.inf)
                 best = int(np.argmin(cost)) if len(near) else 0
-                if len(near) and cost[best] <= BOUND_COST * width:
+                if len(near) and cost[best] <= weight[dim] * width:
                     j = int(near[best])
                 elif lo == 0 and hi == len(axis):   # no spot holds it: the roomiest one
                     j = int(near[best]) if len(near) and np.isfinite(cost[best]) else int(np.argmax(clear))
