@@ -35,6 +35,7 @@ from .start import (any_angle, emission_ranks, footprint_radius, orientation_tar
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
 DEFAULT_OPEN_FILL = 0.5
+STILL_ITERATIONS = 20     # the iterations of a layout in which no mark moves and no scale grows
 
 
 @dataclass
@@ -288,6 +289,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
     _check(abort)
     cap = max_iterations or max(layer.iterations for layer in layers)
+    if not start.movable.any() and not free_scale:   # nothing can move (a grid): one short polish
+        cap = min(cap, STILL_ITERATIONS)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}
     for i in order:
