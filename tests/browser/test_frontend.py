@@ -519,3 +519,17 @@ def test_stage_scales_to_fit_a_narrow_cell_at_high_dpi(browser, page_url):
         assert [c["x"], c["y"], c["w"], c["h"]] == pytest.approx([100, 100, 200, 200], abs=2), "pointer -> canvas px"
     finally:
         context.close()
+
+
+def test_position_slots_and_arrange_setting(page):
+    mount(page)
+    page.locator('[data-field="Duration"]').drag_to(page.locator('[data-channel="x"]'))
+    page.click('[data-field="Task"]')
+    page.click('[data-channel="y"]')
+    assert (layer(page)["encodings"]["x"], layer(page)["encodings"]["y"]) == ("Duration", "Task")
+    page.select_option('[data-setting="x_scale"]', "log")
+    page.select_option('[data-setting="arrange"]', "grid")
+    assert (layer(page)["x_scale"], layer(page)["arrange"]) == ("log", "grid")
+    page.click('[data-clear="x"]')
+    assert layer(page)["encodings"]["x"] is None
+    assert page.locator('[data-setting="x_scale"]').count() == 0, "the scale shows once x is bound"
