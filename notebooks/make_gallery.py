@@ -28,6 +28,7 @@ THUMBS = {
     "07-storytelling": ["07-slide-1-jar.svg", "07-slide-2-piles.svg", "07-slide-3-timeline.svg"],
     "08-gallery": ["08-gallery.png"],
     "09-mark-groups": ["09-mark-groups.svg", "09-mark-set.svg"],
+    "10-beeswarm-waffle": ["10-beeswarm.svg", "10-waffle.svg"],
 }
 
 
