@@ -18,11 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import torch
-from scipy.spatial import cKDTree
 
 from ..design.positions import POSITION_CHANNELS, position_scale
 from .lattice import Region
-from .pack import STEP, Packing
+from .pack import Packing
 from .start import footprint_radius
 
 BIN = 4.0              # scale cap: bins along a bound axis, in median footprint radii
@@ -31,6 +30,7 @@ PACKED = 0.6           # scale cap: the share of a bin's area its discs may need
 ANCHOR_WEIGHT = 0.05   # pull towards the target, relative to overlap (forces use 0.005 at rest)
 BAND_PULL = 20.0       # the pull back into a band, times the pull towards a number
 BOUND_COST = 10.0      # start: a px off the target costs as much as this many off the middle
+DODGE_STEP = 0.5       # start: spot spacing in median footprint radii (the optimiser refines)
 BAND_COST = 1000.0     # start: a px out of a band costs as much as this many off a number
 
 
@@ -198,7 +198,7 @@ def dodge(center: np.ndarray, units, layers, canvas, radius, target, tol, mask, 
             continue
         region = Region(layer.region.coverage(canvas, rho), rho)
         r = radius[idx]
-        pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
+        pack = Packing(region, DODGE_STEP * float(np.median(r)), float(r.max()))
         pts, clear, tree = pack.points, pack.clear, pack.tree
         if tree is None:
             raise ValueError(f"layer {layer.name!r}: its container has no room to place marks in")
