@@ -153,3 +153,13 @@ def test_dropna_drops_rows_whose_position_cannot_be_placed():
     with pytest.warns(UserWarning, match=r"dropped 2 of 5 rows .*x='v'"):
         chart = uw.Chart(df, x="v", x_scale="log", dropna=True, canvas=CANVAS)
     assert list(chart.df.index) == [0, 2, 3]
+
+
+def test_a_datetime_column_is_a_linear_position_with_date_ticks():
+    from unitopia_widget.output.axes import ticks
+    df = pd.DataFrame({"d": pd.date_range("2025-01-01", periods=40, freq="7D")})
+    units, problem = targets(uw.Chart(df, x="d", canvas=CANVAS, boundary="open"))
+    tx = problem.anchor.target[:, 0].numpy().astype(float)
+    assert np.allclose(np.diff(tx), np.diff(tx)[0], rtol=1e-3)       # equal steps in time
+    labels = [label for _, label in ticks(problem.anchor.axes[0])]
+    assert labels and all(label.startswith("2025-") for label in labels)
