@@ -38,8 +38,10 @@ BAND_COST = 1000.0     # start: a px out of a band costs as much as this many of
 class Axis:
     """A bound axis of one layer, as drawn by the export (``output/axes``).
 
-    ``lo``, ``hi``: canvas px of the extent's ends along the axis; ``cross``: where
-    the axis line stands on the other axis (below or left of the container)."""
+    ``lo``, ``hi``: canvas px of the extent's ends along the axis; ``cross``, ``far``:
+    the container's edges on the other axis, the near one (bottom for x, left for y) where
+    the axis line stands, and the far one (top, right) where it goes when the canvas leaves
+    no room at the near one."""
 
     layer: str
     channel: str
@@ -47,6 +49,7 @@ class Axis:
     lo: float
     hi: float
     cross: float
+    far: float
 
     def at(self, fraction):
         """Canvas px of ``fraction`` (array or float) of the extent."""
@@ -111,7 +114,8 @@ def anchors(units, layers, canvas, radius, rho: float):
             if channel not in scales:
                 continue
             lo, hi = extent(region, dim, reach)
-            axis = Axis(layer.name, channel, scales[channel], lo, hi, y1 if dim == 0 else x0)
+            axis = Axis(layer.name, channel, scales[channel], lo, hi, *((y1, y0) if dim == 0
+                                                                         else (x0, x1)))
             axes.append(axis)
             target[idx, dim] = axis.at(units.position[idx, dim])
             tol[idx, dim] = np.maximum(units.band[idx, dim] * (hi - lo) - radius[idx], 0.0)

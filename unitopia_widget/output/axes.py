@@ -3,7 +3,8 @@
 Each bound ``x=``/``y=`` of a layer (a ``layout.positions.Axis`` the layout
 kept in ``result.axes``) is drawn as ``<g class="axis" data-channel="x|y"
 data-layer=...>``: a line along the extent the values were mapped to, below
-the container (x) or left of it (y), ticks at round values (decades on a log
+the container (x) or left of it (y) (above or right of it when the canvas leaves no
+room there), ticks at round values (decades on a log
 scale, dates for datetimes) or one label per band at its centre, and the
 column's name at the end. Lines and text stay on the canvas.
 """
@@ -89,7 +90,9 @@ def _axis(axis, canvas) -> str:
     band = axis.scale.kind == "band"
     parts = []
     if axis.channel == "x":
-        y = min(axis.cross + GAP, h - ROOM)
+        # below the container; above it when the canvas ends below and there is room above
+        below = axis.cross + GAP <= h - ROOM or axis.far - GAP < ROOM
+        y = min(axis.cross + GAP, h - ROOM) if below else axis.far - GAP - ROOM
         parts.append(f'<line stroke="#555" x1="{_n(axis.lo)}" y1="{_n(y)}" x2="{_n(axis.hi)}" y2="{_n(y)}"/>')
         for t, label in ticks(axis):
             x = float(axis.at(t))
@@ -100,14 +103,18 @@ def _axis(axis, canvas) -> str:
         parts.append(f'<text x="{_n(axis.hi)}" y="{_n(y + TICK + 2.2 * FONT)}" font-size="{FONT}" '
                      f'text-anchor="end" font-weight="bold" {TEXT}>{escape(_clip(axis.scale.column))}</text>')
     else:
-        x = max(axis.cross - GAP, ROOM * 2)
+        # left of the container, its labels before it; right of it when the canvas leaves
+        # no room on the left and does on the right
+        left = axis.cross - GAP >= 2 * ROOM or axis.far + GAP > w - 2 * ROOM
+        x = max(axis.cross - GAP, 2 * ROOM) if left else axis.far + GAP
+        side, anchor = (-1, "end") if left else (1, "start")
         parts.append(f'<line stroke="#555" x1="{_n(x)}" y1="{_n(axis.lo)}" x2="{_n(x)}" y2="{_n(axis.hi)}"/>')
         for t, label in ticks(axis):
             y = float(axis.at(t))
             if not band:
-                parts.append(f'<line stroke="#555" x1="{_n(x - TICK)}" y1="{_n(y)}" x2="{_n(x)}" y2="{_n(y)}"/>')
-            parts.append(f'<text x="{_n(x - TICK - 2)}" y="{_n(y + FONT / 3)}" font-size="{FONT}" '
-                         f'text-anchor="end" {TEXT}>{escape(label)}</text>')
+                parts.append(f'<line stroke="#555" x1="{_n(x + side * TICK)}" y1="{_n(y)}" x2="{_n(x)}" y2="{_n(y)}"/>')
+            parts.append(f'<text x="{_n(x + side * (TICK + 2))}" y="{_n(y + FONT / 3)}" font-size="{FONT}" '
+                         f'text-anchor="{anchor}" {TEXT}>{escape(label)}</text>')
         parts.append(f'<text x="{_n(x)}" y="{_n(max(axis.lo - FONT, FONT))}" font-size="{FONT}" '
                      f'text-anchor="middle" font-weight="bold" {TEXT}>{escape(_clip(axis.scale.column))}</text>')
     return (f'<g class="axis" data-channel="{axis.channel}" data-layer={quoteattr(axis.layer)} '
