@@ -163,3 +163,16 @@ def test_a_datetime_column_is_a_linear_position_with_date_ticks():
     assert np.allclose(np.diff(tx), np.diff(tx)[0], rtol=1e-3)       # equal steps in time
     labels = [label for _, label in ticks(problem.anchor.axes[0])]
     assert labels and all(label.startswith("2025-") for label in labels)
+
+
+def test_an_axis_without_room_on_its_side_goes_to_the_far_side():
+    from unitopia_widget.design.positions import Scale
+    from unitopia_widget.layout.positions import Axis
+    from unitopia_widget.output.axes import axes_svg
+    bands = Scale("k", "band", ("a", "b"))
+    left = axes_svg([Axis("l", "y", bands, 50, 450, cross=100, far=500)], CANVAS)
+    right = axes_svg([Axis("l", "y", bands, 50, 450, cross=0, far=500)], CANVAS)
+    assert 'x1="94.0"' in left and 'text-anchor="end"' in left
+    assert 'x1="506.0"' in right and 'text-anchor="start"' in right
+    top = axes_svg([Axis("l", "x", bands, 50, 750, cross=500, far=100)], CANVAS)
+    assert 'y1="61.0"' in top                       # above the container: 100 - 6 - 33
