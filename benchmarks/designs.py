@@ -182,6 +182,23 @@ def design_grid():
                 emitter=uw.GridEmitter(direction=90)), [c]
 
 
+def design_beeswarm():
+    """500 marks, x= a skewed column on a log scale, sizes spread 10x, in a wobbly blob."""
+    rng = np.random.default_rng(22)
+    df = pd.DataFrame({"v": rng.lognormal(2.0, 0.8, 500), "s": lognormal(500, 10, 22)})
+    c = uw.Container.polygon(blob(400, 300, 330, 230, 0.12, 22))
+    return dict(df=df, mark="circle", size="s", x="v", x_scale="log", container=c), [c]
+
+
+def design_waffle():
+    """300 squares in rows and columns, grouped by kind, in a wobbly blob."""
+    rng = np.random.default_rng(23)
+    df = pd.DataFrame({"kind": rng.choice(list("abcd"), 300)})
+    c = uw.Container.polygon(blob(400, 300, 320, 240, 0.12, 23))
+    return dict(df=df, mark="square", color="kind", order="kind", arrange="grid", margin=0.15,
+                container=c), [c]
+
+
 def design_rects():
     rect = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 40 20">'
                        '<rect width="40" height="20" fill="#e15759"/></svg>')
@@ -246,7 +263,8 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,
-           "strata": design_strata, "pareto": design_pareto}
+           "strata": design_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
+           "waffle": design_waffle}
 
 
 def build(name):

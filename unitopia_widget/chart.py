@@ -28,13 +28,15 @@ from .hand import HandControl
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
                     check_design_header, is_category_dict)
 from .design.files import design_code, load_design
+from .design.positions import POSITION_CHANNELS, invalid_position_rows
 from .design.upgrade import upgrade
 from .design.validate import check_finite, closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
-             "legend", "tooltip", "size_range", "width_range", "height_range")
+             "legend", "tooltip", "size_range", "width_range", "height_range", "x", "y",
+             "x_scale", "y_scale", "arrange")
 SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
@@ -89,9 +91,9 @@ class Chart(HandControl):
             engine.check_column(df, channel, column)
             missing_by |= df[column].isna().to_numpy()
         if opts.pop("dropna", False):
-            bad = invalid_rows(df, opts) | missing_by
+            bad = invalid_rows(df, opts) | invalid_position_rows(df, opts) | missing_by
             if bad.any():
-                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS
+                bound = [f"{c}={opts[c]!r}" for c in NUMERIC_CHANNELS + POSITION_CHANNELS
                          if isinstance(opts.get(c), str) and opts[c] in df.columns]
                 bound += [f"{c}={v!r}" for c, v in categories.items() if df[v].isna().any()]
                 warnings.warn(f"dropna=True: dropped {int(bad.sum())} of {len(df)} rows whose "
@@ -306,13 +308,15 @@ class Chart(HandControl):
         self.page = PageOptions(d["title"], d["caption"], d["legend"])
         self._changed()
 
-    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False,
+               axes: bool = False) -> str:
         """The laid-out chart as SVG text (run the layout first).
 
         ``legend``: None (the chart's setting: shown when a channel is bound), True,
         False, or a position ("right", "bottom", "left", "top", [x, y] canvas px);
         ``title``/``caption``: text drawn above/below (None: the chart's, "" none);
-        ``outline``: draw each layer's container as ``<path class="container">``.
+        ``outline``: draw each layer's container as ``<path class="container">``;
+        ``axes``: draw the axes (or band labels) of ``x=``/``y=`` as ``<g class="axis">``.
         The size legend is area-true at the layout's scale; layers bound to the same
         size column share one size legend, which says so."""
         if self.placements is None:
@@ -329,23 +333,25 @@ class Chart(HandControl):
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
-        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline)
+        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline,
+                         axes=axes)
         return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
-             fps=None, seconds=None) -> None:
+             fps=None, seconds=None, axes: bool = False) -> None:
         """Write ``.svg`` (the chart), ``.png`` (rendered at 2x), ``.json`` (the design),
         ``.html`` (one page: the SVG with tooltips and a replay of the settling), or
         the last run's settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm`` (``fps`` frames a
         second for ``seconds``; default 20 and 3; video needs the ``[video]`` extra).
-        ``legend``, ``title``, ``caption``, ``outline``: as for ``to_svg``."""
+        ``legend``, ``title``, ``caption``, ``outline``, ``axes``: as for ``to_svg``."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
         if (fps is not None or seconds is not None) and ext not in animation.FORMATS:
             raise ValueError(f"save: fps and seconds are for an animation "
                              f"({', '.join(animation.FORMATS)}), not {ext!r}")
         if ext in (".svg", ".png", ".html") + animation.FORMATS:
-            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline)
+            svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline,
+                              axes=axes)
         if ext in animation.FORMATS:
             fps, seconds = animation.check_timing(fps, seconds)
             images = animation.render(self, svg, fps, seconds)

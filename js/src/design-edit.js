@@ -2,7 +2,7 @@
 // new one; the input is never mutated, so the old one can go on the undo stack.
 import { translatePathData } from "./pathdata.js";
 
-export const CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order"];
+export const CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order", "x", "y"];
 
 export const clone = (value) => (value == null ? value : JSON.parse(JSON.stringify(value)));
 
@@ -16,7 +16,7 @@ export function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     rows: null,
     marks: [clone(mark)],
     mark_keys: null,
-    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0.0, order: null },
+    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0.0, order: null, x: null, y: null },
     container: null,
     emitter: null,
     forces: [],
@@ -27,6 +27,9 @@ export function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     blocks: [],
     iterations: 600,
     footprint: "silhouette",
+    x_scale: "linear",
+    y_scale: "linear",
+    arrange: "free",
   };
 }
 

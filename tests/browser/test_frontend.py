@@ -539,3 +539,17 @@ def test_copy_as_python_puts_the_kernels_code_on_the_clipboard_or_in_a_selected_
     assert area.input_value() == code + "# again\n"
     assert page.evaluate("() => { const a = document.querySelector('textarea.ut-code'); "
                          "return [a.selectionStart, a.selectionEnd] }") == [0, len(code) + 8]
+
+
+def test_position_slots_and_arrange_setting(page):
+    mount(page)
+    page.locator('[data-field="Duration"]').drag_to(page.locator('[data-channel="x"]'))
+    page.click('[data-field="Task"]')
+    page.click('[data-channel="y"]')
+    assert (layer(page)["encodings"]["x"], layer(page)["encodings"]["y"]) == ("Duration", "Task")
+    page.select_option('[data-setting="x_scale"]', "log")
+    page.select_option('[data-setting="arrange"]', "grid")
+    assert (layer(page)["x_scale"], layer(page)["arrange"]) == ("log", "grid")
+    page.click('[data-clear="x"]')
+    assert layer(page)["encodings"]["x"] is None
+    assert page.locator('[data-setting="x_scale"]').count() == 0, "the scale shows once x is bound"

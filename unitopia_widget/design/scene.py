@@ -15,10 +15,11 @@ from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark, check_footprint
+from .positions import check_arrange, check_scale
 from .validate import check_choice, check_finite, closest, short
 
 SCHEMA, VERSION = "unitopia-design", 3
-CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order")
+CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order", "x", "y")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
 BOUNDARIES = ("closed", "open")
@@ -26,7 +27,8 @@ MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 RANGES = ("size_range", "width_range", "height_range")   # (min_px, max_px) of a linear scale
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
-                "rotate", "blocks", "iterations", "footprint", "name") + CHANNELS + RANGES
+                "rotate", "blocks", "iterations", "footprint", "name", "x_scale", "y_scale",
+                "arrange") + CHANNELS + RANGES
 
 
 class Layer:
@@ -64,6 +66,8 @@ class Layer:
         self.boundary, self.fill, self.orientation = "closed", None, None
         self.rotate, self.iterations, self.footprint = False, 600, "silhouette"
         self.size_range = self.width_range = self.height_range = None
+        self.x_scale = self.y_scale = "linear"   # position channels: see design/positions.py
+        self.arrange = "free"
         self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
                  fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
                  iterations=iterations, footprint=footprint, **encodings)
@@ -118,7 +122,8 @@ class Layer:
             "forces": [f.to_json() for f in self.forces],
             "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
             "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
-            "footprint": self.footprint,
+            "footprint": self.footprint, "x_scale": self.x_scale, "y_scale": self.y_scale,
+            "arrange": self.arrange,
             **{k: list(getattr(self, k)) for k in RANGES if getattr(self, k) is not None},
         }
 
@@ -147,7 +152,8 @@ class Layer:
                    orientation=d.get("orientation"), rotate=d.get("rotate", False),
                    blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
                    footprint=d.get("footprint", "silhouette"), on_change=on_change,
-                   **{k: d[k] for k in RANGES if d.get(k) is not None}, **enc)
+                   **{k: d[k] for k in RANGES if d.get(k) is not None},
+                   **{k: d[k] for k in ("x_scale", "y_scale", "arrange") if k in d}, **enc)
 
     def __repr__(self) -> str:
         bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
@@ -342,6 +348,8 @@ _CHECKS = {
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
     "iterations": _iterations, "name": lambda v: layer_name(v),
     "footprint": lambda v: check_footprint("footprint", v),
+    "x_scale": lambda v: check_scale("x", v), "y_scale": lambda v: check_scale("y", v),
+    "arrange": check_arrange,
     **{c: _channel(c) for c in CHANNELS},
     **{k: (lambda v, k=k: _range(k, v)) for k in RANGES},
 }

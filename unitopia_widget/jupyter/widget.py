@@ -165,12 +165,14 @@ class UnitoPia(anywidget.AnyWidget):
         self._chart.set_data(df)
         self.fields = _fields(df)
 
-    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False) -> str:
+    def to_svg(self, legend=None, title=None, caption=None, outline: bool = False,
+               axes: bool = False) -> str:
         """The laid-out chart as SVG; see ``Chart.to_svg`` for the arguments."""
-        return self._chart.to_svg(legend=legend, title=title, caption=caption, outline=outline)
+        return self._chart.to_svg(legend=legend, title=title, caption=caption, outline=outline,
+                                  axes=axes)
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
-             fps=None, seconds=None) -> None:
+             fps=None, seconds=None, axes: bool = False) -> None:
         """``.svg``, ``.png``, ``.json`` (the design, reload with ``UnitoPia.load``), or the
         settling as ``.gif``, ``.webp``, ``.mp4``, ``.webm``, or ``.html`` (one page with tooltips
         and a replay); see ``Chart.save``. Anything but ``.json`` is refused while a layout
@@ -185,7 +187,7 @@ class UnitoPia(anywidget.AnyWidget):
                           f"since it was laid out (w.stale); call w.run(wait=True) first to save "
                           f"the current design", UserWarning, stacklevel=2)
         self._chart.save(path, legend=legend, title=title, caption=caption, outline=outline,
-                         fps=fps, seconds=seconds)
+                         fps=fps, seconds=seconds, axes=axes)
 
     title = property(lambda self: self._chart.title, lambda self, v: setattr(self._chart, "title", v),
                      doc="The chart's title, drawn above it in the export (None: none).")

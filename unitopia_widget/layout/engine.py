@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 import torch
 
+from . import arrange, positions
 from .atlas import SpriteAtlas
 from ..design.encodings import (Encoded, check_column, continuous_values, encode, footprint,
                                 linear_extent, is_continuous, missing_warning, palette_for, unhashable)
@@ -28,13 +29,15 @@ from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
 from .solver import Cancelled, Problem, Result, solve
-from .start import any_angle, orientation_targets, packed_scales, start_positions
+from .start import (any_angle, emission_ranks, footprint_radius, orientation_targets,
+                    packed_scales, spot_cost, start_positions)
 from .pins import pin_problem, pinned_units
 from .warm import warm_problem
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
 DEFAULT_OPEN_FILL = 0.5
+STILL_ITERATIONS = 20     # the iterations of a layout in which no mark moves and no scale grows
 
 
 @dataclass
@@ -52,6 +55,12 @@ class Units:
     mark: np.ndarray         # index of the unit's mark within its layer's marks
     sprite: np.ndarray       # index of the unit's mark in ``sprites``
     sprites: list            # the distinct footprint Marks (Mark.as_footprint), one sprite pyramid each
+    #: position channels (design/positions.py): (N, 2) place along x, y as a fraction of the
+    #: container's extent, NaN where unbound; the half band width, same shape; per layer
+    #: {"x": Scale, "y": Scale} of its bound channels
+    position: np.ndarray | None = None
+    band: np.ndarray | None = None
+    position_scales: list | None = None
 
     @property
     def fill_fraction(self) -> np.ndarray:
@@ -94,6 +103,7 @@ def bind(df: pd.DataFrame, layers) -> Units:
     # numeric colours: one scale per column, shared by the layers (as the palettes are)
     domains = {c: _finite_range(df[c]) for c in color_cols if c not in palettes}
     parts, rows, sprites = [], [], {}
+    position, band, position_scales = positions.bind_positions(df, layers, layer_rows)
     for i, layer in enumerate(layers):
         sub = layer_rows(df, layer)
         if len(sub) == 0:
@@ -129,7 +139,8 @@ def bind(df: pd.DataFrame, layers) -> Units:
                  area=cat(lambda p: p[3].area * p[3].width * p[3].height),
                  margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
                  colors=[c for p in parts for c in p[3].colors],
-                 mark=cat(lambda p: p[4]), sprite=cat(lambda p: p[5]), sprites=list(sprites))
+                 mark=cat(lambda p: p[4]), sprite=cat(lambda p: p[5]), sprites=list(sprites),
+                 position=position, band=band, position_scales=position_scales)
 
 
 def _ranged(values: np.ndarray, series: pd.Series, span, squared: bool) -> np.ndarray:
@@ -238,6 +249,11 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales, caps)
     group_scale = packed_scales(units, layers, order, canvas, group_scale, group_free,
                                 scale_group, caps)
+    rho_start = min(1.0, 600.0 / max(canvas))   # the start's region raster
+    group_scale, group_free = arrange.grid_scales(units, layers, canvas, group_scale, group_free,
+                                                  scale_group, rho_start)
+    group_scale, group_free = positions.capped_scales(units, layers, canvas, group_scale,
+                                                      group_free, scale_group, rho_start)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
     _check(abort)
@@ -278,6 +294,13 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         shape=grid.shape, norm=norm, w_fill=0.15 if free_scale else 0.0)
     generator = torch.Generator().manual_seed(int(seed))
     start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
+    arrange.snap(start, units, layers, canvas, unit_scale, lambda layer, pts: spot_cost(
+        layer, layer.region, canvas, pts), rho_start)
+    anchor = positions.anchors(units, layers, canvas, footprint_radius(units) * unit_scale, rho_start)
+    if anchor is not None:
+        positions.dodge(start.center, units, layers, canvas, footprint_radius(units) * unit_scale,
+                        *anchor[:3], lambda idx: emission_ranks(units.order[idx]), rho_start)
+        anchor = positions.Anchor(*anchor, radius=r_mean, device=dev, band=units.band)
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
@@ -286,6 +309,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
     _check(abort)
     cap = max_iterations or max(layer.iterations for layer in layers)
+    if not start.movable.any() and not free_scale:   # nothing can move (a grid): one short polish
+        cap = min(cap, STILL_ITERATIONS)
     # layers emitted on top of the layers they block on are poured in turn
     depth = {}
     for i in order:
@@ -302,7 +327,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
                    reach=_reach(units),
                    stage=np.array([depth[i] for i in units.layer]),
-                   travelling=any(layer.emitter is not None for layer in layers))
+                   travelling=any(layer.emitter is not None for layer in layers), anchor=anchor)
 
 
 def _check(abort) -> None:

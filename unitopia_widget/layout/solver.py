@@ -56,6 +56,7 @@ class Problem:
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
     travelling: bool = True        # whether marks start away from where they will rest
+    anchor: object | None = None   # positions.Anchor: the pull of x=/y= bound units to their targets
     max_iterations: int = 600
     polish_iterations: int = 60
     polish_shrink: float = 0.008
@@ -97,6 +98,7 @@ class Result:
     stats: dict = field(default_factory=dict)
     unit_scale: np.ndarray | None = None   # (N,) global scale of each unit's group
     phases: dict = field(default_factory=dict)  # "settle"/"polish" and "phase.rule": iterations
+    axes: list = field(default_factory=list)    # positions.Axis of each bound x=/y= channel
 
 
 def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
@@ -156,6 +158,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             weight = p.force_travel if s.travelling else p.force_weight
         for members, fs in force_layers:
             loss = loss + weight * potential(fs, center[members]).mean() / radius
+        if p.anchor is not None:
+            loss = loss + p.anchor.loss(center)
         loss = loss + place.penalty()
         optimizer.zero_grad(set_to_none=True)
         loss.backward()
@@ -182,7 +186,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                   angle=np.degrees(angle.detach().cpu().numpy().astype(np.float64)),
                   scale=float(np.exp(ctl.log[0])), iterations=s.iteration,
                   seconds=time.perf_counter() - started, cancelled=cancelled, stats=stats,
-                  unit_scale=unit_scale.astype(np.float64), phases=dict(s.record))
+                  unit_scale=unit_scale.astype(np.float64), phases=dict(s.record),
+                  axes=[] if p.anchor is None else list(p.anchor.axes))
 
 
 def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:

@@ -12,6 +12,7 @@ import numpy as np
 from ..layout import engine
 from . import legend as legend_mod, legend_draw
 from .export import to_svg
+from .axes import axes_svg
 from .outline import outlines
 from ..io.svgsafe import sanitize_svg
 from .page import CAPTION_CHARS, TITLE_CHARS, check_position, check_text, compose
@@ -86,7 +87,8 @@ def legend_image(chart) -> tuple[str, float, float] | None:
     return sanitize_svg(svg), w, h
 
 
-def export_svg(chart, units, legend=None, title=None, caption=None, outline=False) -> str:
+def export_svg(chart, units, legend=None, title=None, caption=None, outline=False,
+               axes=False) -> str:
     """The laid-out chart of ``units`` with its page around it (see ``Chart.to_svg``)."""
     opts = chart.page
     title = opts.title if title is None else check_text("title", title, TITLE_CHARS)
@@ -99,6 +101,14 @@ def export_svg(chart, units, legend=None, title=None, caption=None, outline=Fals
                                            else opts.legend["position"])
     if not isinstance(outline, bool):
         raise TypeError(f"outline must be True or False, got {outline!r:.40}")
+    if not isinstance(axes, bool):
+        raise TypeError(f"axes must be True or False, got {axes!r:.40}")
+    drawn = chart.result.axes if chart.result is not None else []
+    if axes and not drawn:
+        raise ValueError("axes=True draws the axes of x= and y=, but the layout binds neither; "
+                         "bind a layer's x= or y= to a column and run the layout again")
     page = compose(chart.canvas, sections(chart, units) if show else None, position, title, caption)
     return to_svg(chart.canvas, chart.placements, chart.layers, units.colors, chart.titles(units),
-                  chart.background, page=page, under=outlines(chart.layers, chart.canvas) if outline else "")
+                  chart.background, page=page,
+                  under=(outlines(chart.layers, chart.canvas) if outline else "")
+                  + (axes_svg(drawn, chart.canvas) if axes else ""))

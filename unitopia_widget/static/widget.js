@@ -81,7 +81,7 @@ function shift(upper, a, dx, dy) {
 var fmt = (v) => String(Math.round(v * 1e3) / 1e3);
 
 // src/design-edit.js
-var CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order"];
+var CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order", "x", "y"];
 var clone = (value) => value == null ? value : JSON.parse(JSON.stringify(value));
 function emptyDesign() {
   return { schema: "unitopia-design", version: 3, canvas: [800, 500], background: null, seed: 0, layers: [] };
@@ -92,7 +92,7 @@ function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     rows: null,
     marks: [clone(mark)],
     mark_keys: null,
-    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0, order: null },
+    encodings: { size: null, width: null, height: null, color: null, shape: null, margin: 0, order: null, x: null, y: null },
     container: null,
     emitter: null,
     forces: [],
@@ -102,7 +102,10 @@ function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     rotate: false,
     blocks: [],
     iterations: 600,
-    footprint: "silhouette"
+    footprint: "silhouette",
+    x_scale: "linear",
+    y_scale: "linear",
+    arrange: "free"
   };
 }
 function uniqueName(design, base) {
@@ -1922,6 +1925,11 @@ function createSettingsPanel(view) {
       row("fill", input("fill", { type: "number", min: "0.05", max: "1", step: "0.05", value: layer.fill ?? "", placeholder: "auto" }, (t) => set({ fill: num(t.value) }))),
       row("orientation", select2("orientation", [["none", "none"], ["to_center", "to centre"], ["along_emitter", "along emitter"], ["angle", "angle…"]], orientKind, (v) => set({ orientation: v === "none" ? null : v === "angle" ? 0 : v }))),
       orientKind === "angle" && row("angle", input("angle", { type: "number", step: "5", value: orient }, (t) => set({ orientation: num(t.value) ?? 0 }))),
+      row("arrange", select2("arrange", [["free", "free (packed)"], ["grid", "grid (rows and columns)"]], layer.arrange || "free", (v) => set({ arrange: v }))),
+      ...["x", "y"].map((c) => layer.encodings?.[c] != null && row(
+        `${c} scale`,
+        select2(`${c}_scale`, [["linear", "linear"], ["log", "log"]], layer[`${c}_scale`] || "linear", (v) => set({ [`${c}_scale`]: v }))
+      )),
       row("rotate", input("rotate", { type: "checkbox", checked: !!layer.rotate }, (t) => set({ rotate: t.checked }))),
       row("margin", input(
         "margin",

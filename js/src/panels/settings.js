@@ -1,4 +1,5 @@
-// Settings of the current layer: boundary, fill, orientation, rotate, margin,
+// Settings of the current layer: boundary, fill, orientation, arrange, the x/y scales
+// (once x or y is bound), rotate, margin,
 // iterations, blocks (checkboxes of the other layers) and the emitter's options.
 import { h, replaceChildren, row } from "../dom.js";
 import { setEncoding, setLayerProps, updateLayer } from "../design-edit.js";
@@ -34,6 +35,9 @@ export function createSettingsPanel(view) {
       row("orientation", select("orientation", [["none", "none"], ["to_center", "to centre"], ["along_emitter", "along emitter"], ["angle", "angle\u2026"]], orientKind, (v) =>
         set({ orientation: v === "none" ? null : v === "angle" ? 0 : v }))),
       orientKind === "angle" && row("angle", input("angle", { type: "number", step: "5", value: orient }, (t) => set({ orientation: num(t.value) ?? 0 }))),
+      row("arrange", select("arrange", [["free", "free (packed)"], ["grid", "grid (rows and columns)"]], layer.arrange || "free", (v) => set({ arrange: v }))),
+      ...["x", "y"].map((c) => layer.encodings?.[c] != null && row(`${c} scale`,
+        select(`${c}_scale`, [["linear", "linear"], ["log", "log"]], layer[`${c}_scale`] || "linear", (v) => set({ [`${c}_scale`]: v })))),
       row("rotate", input("rotate", { type: "checkbox", checked: !!layer.rotate }, (t) => set({ rotate: t.checked }))),
       row("margin", input("margin", { type: "number", min: "0", step: "0.01", value: typeof margin === "number" ? margin : "", placeholder: typeof margin === "string" ? `field ${margin}` : "0" },
         (t) => view.commit(setEncoding(view.design(), i, "margin", num(t.value) ?? 0)))),
