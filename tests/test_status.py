@@ -122,24 +122,42 @@ def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
     assert w.legend_image == {}
 
 
-def test_the_static_output_carries_the_layout_as_an_image(df):
+def test_the_static_output_shows_the_chart_trusted_or_not(df):
     w = uw.UnitoPia(df, size="v", iterations=20)
     data, _ = w._repr_mimebundle_()
     assert "application/vnd.jupyter.widget-view+json" in data
-    assert "UnitoPia chart: 8 rows in 1 layer(s), not laid out yet" in data["text/plain"]
-    assert "image/svg+xml" not in w._static.bundle()
+    view_text = "UnitoPia chart: 8 rows in 1 layer(s) (the live widget; its image follows)"
+    assert data["text/plain"] == view_text              # no run state in it that would go stale
+    before = w._static.bundle()
+    assert "not laid out yet" in before["text/plain"] and "image/png" not in before
+    assert before["image/svg+xml"].startswith('<svg class="unitopia-static" ')
     w.run(wait=True)
+    assert w._repr_mimebundle_()[0]["text/plain"] == view_text
     data = w._static.bundle()
-    assert data["image/svg+xml"].count('class="unit"') == len(df)
-    assert data["text/html"].count('class="unit"') == len(df)
-    assert "display:none" in data["text/html"]           # hidden after a live view only
-    ids = re.findall(r'id="([^"]+)"', data["image/svg+xml"])
-    refs = re.findall(r'href="#([^"]+)"', data["image/svg+xml"])
+    # JupyterLab shows an untrusted output in its first safe type by rank, and sanitised
+    # text/html is safe and ranks before image/png: the bundle holds none
+    assert set(data) == {"text/plain", "image/svg+xml", "image/png"}
+    assert data["text/plain"] == "UnitoPia chart: 8 rows in 1 layer(s), status done"
+    svg = data["image/svg+xml"]
+    assert svg.startswith('<svg class="unitopia-static" ')   # what the widget's CSS hides
+    assert svg.count('class="unit"') == len(df)
+    ids = re.findall(r'id="([^"]+)"', svg)
+    refs = re.findall(r'href="#([^"]+)"', svg)
     assert ids and set(refs) <= set(ids) and all(i.startswith("c") for i in ids)
     assert base64.b64decode(data["image/png"])[:8] == b"\x89PNG\r\n\x1a\n"
     state = w.get_state()                        # what a saved notebook keeps of the widget
     assert len(state["frame"]) == 16 * len(df) and len(state["units"]) == 16 * len(df)
     assert state["marks"] and state["status"] == "done"
+
+    def fails(scale):
+        raise ValueError("SVG data parsing failed cause nodes limit reached")
+
+    w._chart.to_png = fails   # a PNG that cannot be drawn: said, and no older image kept
+    with pytest.warns(RuntimeWarning, match="its PNG could not be drawn: ValueError: SVG data"):
+        data = w._static.bundle()
+    assert set(data) == {"text/plain", "image/svg+xml"}
+    assert data["text/plain"].endswith("its PNG could not be drawn: ValueError: SVG data parsing "
+                                       "failed cause nodes limit reached")
 
 
 # --- odd inputs ------------------------------------------------------------------------

@@ -18,7 +18,7 @@ from numbers import Real
 import numpy as np
 from PIL import Image
 
-from ..io.svgsafe import SVG_NS
+from .composite import distinct, sprites, tile as composite_tile
 from .export import png_array
 
 FORMATS = (".gif", ".webp", ".mp4", ".webm")
@@ -48,15 +48,6 @@ def resample(frames: np.ndarray, count: int) -> np.ndarray:
     return frames[lo] * (1 - w) + frames[hi] * w
 
 
-def _sprite(fragment: str, def_id: str, box, size) -> Image.Image:
-    bw, bh = box
-    w, h = size
-    svg = (f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" width="{w}" '
-           f'height="{h}" viewBox="0 0 {bw:.6g} {bh:.6g}" preserveAspectRatio="none">'
-           f'<defs>{fragment}</defs><use href="#{def_id}"/></svg>')
-    return Image.fromarray(png_array(svg, (w, h)), "RGBA")
-
-
 def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[Image.Image]:
     """The settling's frames as RGB images over white, ``scale`` px per canvas px.
     ``svg``: the chart's export (its page without the units is the backdrop)."""
@@ -70,23 +61,13 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     back = Image.new("RGBA", size, "white")
     page = Image.fromarray(png_array(_UNIT.sub("", svg), (vw, vh), scale), "RGBA")
     back.alpha_composite(page.resize(size) if page.size != size else page)
-    by_name = {layer.name: layer for layer in chart.layers}
-    keys = list(zip(table["layer"], table["mark"], units.colors))
-    ids, marks = {}, []
-    for key in keys:
-        if key not in ids:
-            ids[key] = len(ids)
-            marks.append(by_name[key[0]].marks[key[1]])
-    kind = np.array([ids[k] for k in keys])
+    pairs, kind = distinct(table, chart.layers, units.colors)
     # drawn size per frame and unit, output px
     half = np.stack([units.half_w, units.half_h], axis=1)
     drawn = 2 * half[None] * frames[:, :, 3:4] * scale              # (F, N, 2)
-    sprites = []
-    for k, mark in enumerate(marks):
-        big = drawn[:, kind == k].reshape(-1, 2).max(axis=0)
-        px = (max(1, int(np.ceil(big[0]))), max(1, int(np.ceil(big[1]))))
-        sprites.append(_sprite(mark.svg_fragment("m", keys[list(kind).index(k)][2]), "m",
-                               mark.box_size, px))
+    biggest = np.zeros((len(pairs), 2))
+    np.maximum.at(biggest, kind, drawn.max(axis=0))
+    art = sprites(pairs, biggest)
     cache: dict = {}
     out = []
     back = back.convert("RGB")
@@ -102,7 +83,7 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
                 continue
             tile = cache.get((k, w, h, a))
             if tile is None:
-                tile = _tile(sprites[k], w, h, a)
+                tile = _stores(composite_tile(art[k], w, h, a))
                 if len(cache) > 50000:
                     cache.clear()
                 cache[(k, w, h, a)] = tile
@@ -113,12 +94,8 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     return out
 
 
-def _tile(sprite: Image.Image, w: int, h: int, angle: int) -> tuple:
-    """The sprite at ``w`` x ``h`` px rotated ``angle`` degrees clockwise: the pixel stores
-    of its RGB and alpha, and its width and height."""
-    tile = sprite.resize((w, h), Image.BILINEAR)
-    if angle:
-        tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
+def _stores(tile: Image.Image) -> tuple:
+    """The pixel stores of ``tile``'s RGB and alpha, and its width and height."""
     return tile.convert("RGB").im, tile.getchannel("A").im, tile.width, tile.height
 
 

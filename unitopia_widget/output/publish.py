@@ -11,6 +11,7 @@ import numpy as np
 
 from ..layout import engine
 from . import legend as legend_mod, legend_draw
+from .composite import chart_png
 from .export import to_svg
 from .outline import outlines
 from ..io.svgsafe import sanitize_svg
@@ -88,6 +89,20 @@ def legend_image(chart) -> tuple[str, float, float] | None:
 
 def export_svg(chart, units, legend=None, title=None, caption=None, outline=False) -> str:
     """The laid-out chart of ``units`` with its page around it (see ``Chart.to_svg``)."""
+    return to_svg(*_drawing(chart, units, legend, title, caption, outline))
+
+
+def export_png(chart, units, legend=None, title=None, caption=None, outline=False,
+               scale: float = 2.0) -> bytes:
+    """PNG bytes of ``export_svg``'s chart at ``scale`` px per canvas px, each distinct
+    mark rendered once (``composite``)."""
+    canvas, table, layers, colors, _titles, background, page, under = _drawing(
+        chart, units, legend, title, caption, outline)
+    return chart_png(canvas, table, layers, colors, background, page, under, scale)
+
+
+def _drawing(chart, units, legend, title, caption, outline) -> tuple:
+    """``to_svg``'s arguments for the chart of ``units`` and the export's options."""
     opts = chart.page
     title = opts.title if title is None else check_text("title", title, TITLE_CHARS)
     caption = opts.caption if caption is None else check_text("caption", caption, CAPTION_CHARS)
@@ -100,5 +115,5 @@ def export_svg(chart, units, legend=None, title=None, caption=None, outline=Fals
     if not isinstance(outline, bool):
         raise TypeError(f"outline must be True or False, got {outline!r:.40}")
     page = compose(chart.canvas, sections(chart, units) if show else None, position, title, caption)
-    return to_svg(chart.canvas, chart.placements, chart.layers, units.colors, chart.titles(units),
-                  chart.background, page=page, under=outlines(chart.layers, chart.canvas) if outline else "")
+    return (chart.canvas, chart.placements, chart.layers, units.colors, chart.titles(units),
+            chart.background, page, outlines(chart.layers, chart.canvas) if outline else "")
