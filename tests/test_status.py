@@ -13,6 +13,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.design.bezier import fit_bezier
+from unitopia_widget.layout.solver import Cancelled
 from test_runner import assert_frame_is_layout, poll
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -158,6 +159,27 @@ def test_the_static_output_shows_the_chart_trusted_or_not(df):
     assert set(data) == {"text/plain", "image/svg+xml"}
     assert data["text/plain"].endswith("its PNG could not be drawn: ValueError: SVG data parsing "
                                        "failed cause nodes limit reached")
+
+
+def test_progress_starts_afresh_at_each_run(df):
+    w = uw.UnitoPia(df, size="v", iterations=30)
+    w.run(wait=True)
+    assert w.progress["iteration"] > 0 and w.progress["done"]
+
+    def stopped_before_its_first_step(**kwargs):
+        raise Cancelled("stopped")
+
+    w._chart.layout = stopped_before_its_first_step
+    w.run(wait=True)
+    assert w.status == "stopped"
+    assert w.progress == {"iteration": 0, "max_iterations": 30, "loss": None, "done": True}
+
+
+def test_a_sketch_too_large_to_draw_is_blamed_at_load_time():
+    with pytest.raises(ValueError, match=r"sketch \(width 1e\+300, points spanning 10 x 10\): draws nothing"):
+        uw.Mark.sketch([[[0, 0], [10, 5], [0, 10]]], width=1e300)
+    with pytest.raises(ValueError, match=r"sketch .*: a mark 1e\+300 x 11 is more than 1e\+06 times wider"):
+        uw.Mark.sketch([[[0, 0], [1e300, 5], [0, 10]]], width=1)
 
 
 # --- odd inputs ------------------------------------------------------------------------

@@ -210,7 +210,8 @@ class UnitoPia(anywidget.AnyWidget):
         self._frame_error = None
         with self.hold_sync():
             self.status, self.frame_count, self.stale = "running", 0, False
-            self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None, "done": False}
+            self._progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None}
+            self.progress = {**self._progress, "done": False}   # this run's, from 0
         self._laid_out = _layout_key(self._chart.design())
         if not self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error,
                                   ticket=ticket):
