@@ -266,7 +266,50 @@ def test_stop_keeps_the_last_frame(lab):
     assert painted_pixels(small) > 500
 
 
-# --- 4. an executed notebook reopened without trust ------------------------------------------
+# --- 4. two views of one widget, one undo history -------------------------------------------
+
+def test_two_views_share_one_undo_history(lab):
+    page = lab.page
+    lab.open([SETUP, 'w = uw.UnitoPia(df, mark="circle", size="v")\nw'])
+    first = widget(lab, 1)
+    second = widget(lab, lab.run_cell(None, "w")["index"])
+    use_tool(first, "container-rect")
+    drag(page, first.locator(STAGE), [(150, 100), (400, 260), (650, 420)], steps=5)
+    assert lab.wait_until("getattr(w.layers[0].container, 'kind', None) == 'rect'")
+    use_tool(second, "force-point")
+    click(page, second.locator(STAGE), 400, 390)
+    assert lab.wait_until("len(w.layers[0].forces) == 1")
+    # Undo in the first view takes back the last edit of either view: the force
+    first.locator('[data-action="undo"]').click()
+    assert lab.wait_until("len(w.layers[0].forces) == 0")
+    time.sleep(1.0)   # any further design update would have arrived by now
+    assert lab.eval("[getattr(w.layers[0].container, 'kind', None), len(w.layers[0].forces)]") == ["rect", 0]
+    second.locator('[data-action="redo"]').click()
+    assert lab.wait_until("len(w.layers[0].forces) == 1")
+    assert lab.eval("getattr(w.layers[0].container, 'kind', None)") == "rect"
+
+
+# --- 5. a kernel restart during a run -----------------------------------------------------------
+
+def test_a_kernel_restart_mid_run_leaves_no_running_view_and_stop_does_not_throw(lab):
+    page = lab.page
+    lab.open([SETUP, "big = pd.DataFrame({'v': rng.uniform(0.5, 10.0, 2000)})\n"
+                     "w = uw.UnitoPia(big, mark='circle', size='v', iterations=3000)\nw"])
+    root = widget(lab, 1)
+    root.locator('[data-action="run"]').click()
+    page.wait_for_function("el => el.dataset.status === 'running' && Number(el.dataset.frames) >= 2",
+                           arg=root.element_handle(), timeout=60_000, polling=100)
+    page.evaluate("jupyterapp.shell.currentWidget.sessionContext.session.kernel.restart()")
+    page.wait_for_function("el => el.dataset.kernel === 'gone'", arg=root.element_handle(),
+                           timeout=30_000, polling=100)
+    word = root.locator(".ut-status-word")
+    assert word.text_content() == "no kernel"
+    root.locator('[data-action="stop"]').evaluate("b => b.click()")   # enabled or not: no throw
+    root.evaluate("el => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    assert word.text_content() == "no kernel"   # the uncaught-error check is the fixture's
+
+
+# --- 6. an executed notebook reopened without trust ------------------------------------------
 
 def test_an_untrusted_executed_notebook_shows_the_chart_as_an_image(lab):
     import subprocess
