@@ -145,6 +145,8 @@ def test_png_export_renders_at_twice_the_canvas(small_chart, tmp_path):
     assert (img[..., 3] == 255).all()
     differs = np.abs(img[..., :3].astype(int) - 200).sum(-1) > 30
     assert 0.002 < differs.mean() < 0.9
+    with pytest.raises(ValueError, match=r"to_png: scale must be a number in \(0, 8\], got 0"):
+        small_chart.to_png(0)
 
 
 # --- the exported layout, measured from the SVG alone ---------------------------------

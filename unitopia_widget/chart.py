@@ -306,18 +306,13 @@ class Chart:
         ``outline``: draw each layer's container as ``<path class="container">``.
         The size legend is area-true at the layout's scale; layers bound to the same
         size column share one size legend, which says so."""
-        return export_svg(self, self._export_units(), legend=legend, title=title, caption=caption,
-                          outline=outline)
+        return export_svg(self, self._export_units(), legend, title, caption, outline)
 
     def to_png(self, scale: float = 2.0, legend=None, title=None, caption=None,
                outline: bool = False) -> bytes:
-        """PNG bytes of ``to_svg``'s chart at ``scale`` px per canvas px; each distinct mark
-        is rendered once and composited, so any chart that lays out exports. ``scale``: a
-        number in (0, 8]."""
-        if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not 0 < scale <= 8:
-            raise ValueError(f"to_png: scale must be a number in (0, 8], got {scale!r:.40}")
-        return export_png(self, self._export_units(), legend=legend, title=title, caption=caption,
-                          outline=outline, scale=scale)
+        """PNG bytes of ``to_svg``'s chart at ``scale`` (in (0, 8]) px per canvas px; each
+        distinct mark is rendered once and composited, so any chart that lays out exports."""
+        return export_png(self, self._export_units(), legend, title, caption, outline, scale)
 
     def _export_units(self):
         """The units an export draws: the layout's, checked against the current layers."""
@@ -361,8 +356,7 @@ class Chart:
         elif ext == ".svg":
             atomic_write(path, svg.encode())
         elif ext == ".png":
-            atomic_write(path, self.to_png(2.0, legend=legend, title=title, caption=caption,
-                                           outline=outline))
+            atomic_write(path, self.to_png(2.0, legend, title, caption, outline))
         elif ext == ".json":
             atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:

@@ -96,6 +96,8 @@ def export_png(chart, units, legend=None, title=None, caption=None, outline=Fals
                scale: float = 2.0) -> bytes:
     """PNG bytes of ``export_svg``'s chart at ``scale`` px per canvas px, each distinct
     mark rendered once (``composite``)."""
+    if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not 0 < scale <= 8:
+        raise ValueError(f"to_png: scale must be a number in (0, 8], got {scale!r:.40}")
     canvas, table, layers, colors, _titles, background, page, under = _drawing(
         chart, units, legend, title, caption, outline)
     return chart_png(canvas, table, layers, colors, background, page, under, scale)
