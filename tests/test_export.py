@@ -4,6 +4,7 @@ import io
 import math
 import re
 import xml.etree.ElementTree as ET
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -13,7 +14,9 @@ from svgpathtools import parse_path
 
 import unitopia_widget as uw
 from unitopia_widget.design.encodings import CATEGORICAL
-from unitopia_widget.output.export import png_array
+from unitopia_widget.chart import MAX_UNITS
+from unitopia_widget.layout import engine
+from unitopia_widget.output.export import png_array, to_svg
 
 NS = {"svg": "http://www.w3.org/2000/svg"}
 SVG = "{http://www.w3.org/2000/svg}"
@@ -142,6 +145,8 @@ def test_png_export_renders_at_twice_the_canvas(small_chart, tmp_path):
     assert (img[..., 3] == 255).all()
     differs = np.abs(img[..., :3].astype(int) - 200).sum(-1) > 30
     assert 0.002 < differs.mean() < 0.9
+    with pytest.raises(ValueError, match=r"to_png: scale must be a number in \(0, 8\], got 0"):
+        small_chart.to_png(0)
 
 
 # --- the exported layout, measured from the SVG alone ---------------------------------
@@ -288,3 +293,56 @@ def test_independent_raster_agrees_with_the_png_render(stars_in_an_ellipse):
     assert alpha.shape == union.shape
     assert np.abs(alpha - union).sum() / union.sum() < 0.03
     assert ((alpha > 0.5) & (union > 0.5)).sum() / ((alpha > 0.5) | (union > 0.5)).sum() > 0.97
+    # the PNG export composites one sprite per distinct mark: the same picture, but for
+    # each mark's size and place rounded to whole px (half a px on 20 to 40 px stars)
+    png = np.asarray(Image.open(io.BytesIO(chart.to_png(2.0, legend=False))).convert("RGBA"))
+    composed = png[..., 3] / 255.0
+    assert composed.shape == union.shape
+    assert np.abs(composed - union).sum() / union.sum() < 0.04
+    assert abs(composed.sum() / alpha.sum() - 1) < 0.01
+    assert ((composed > 0.5) & (union > 0.5)).sum() / ((composed > 0.5) | (union > 0.5)).sum() > 0.97
+
+
+# --- PNG at the largest supported size ---------------------------------------------------
+
+def dotted_icon(dots: int = 50) -> str:
+    """An SVG icon of ``dots`` circles in one group: 51 elements under the root."""
+    body = "".join(f'<circle cx="{2 + i % 10 * 2}" cy="{2 + i // 10 * 4}" r="0.8"/>' for i in range(dots))
+    return f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 22 22"><g fill="#333">{body}</g></svg>'
+
+
+def place_on_grid(chart) -> None:
+    """Placements of every unit on a grid, turned a little each, as a run would leave
+    them (no solve: the export is what is tested)."""
+    units = engine.bind(chart.df, chart.layers)
+    n, (w, h) = len(units.rows), chart.canvas
+    cols = int(np.ceil(np.sqrt(n * w / h)))
+    cell, k = w / cols, np.arange(n)
+    scale = 0.4 * cell / units.half_w.max()
+    chart._units = chart._placed = units
+    chart.result = SimpleNamespace(center=np.stack([(k % cols + 0.5) * cell, (k // cols + 0.5) * cell], 1),
+                                   angle=(k * 37.0) % 360, unit_scale=np.full(n, scale), scale=scale,
+                                   cancelled=False)
+    chart.placements = engine.placements(units, chart.layers, chart.result)
+
+
+def test_twenty_thousand_icons_export_a_png_like_the_svg_draws_them(tmp_path):
+    # resvg expands each <use> into its own tree: 20,000 x 51 nodes passes its limit, so
+    # the units are composited from one rendered sprite per distinct mark
+    chart = uw.Chart(pd.DataFrame({"v": np.ones(MAX_UNITS)}), mark=uw.Mark.svg(dotted_icon()),
+                     canvas=(800, 500))
+    place_on_grid(chart)
+    chart.save(tmp_path / "x.png")
+    img = np.asarray(Image.open(tmp_path / "x.png").convert("RGBA")).astype(float)
+    assert img.shape == (1000, 1600, 4)
+    # the first rows of units, drawn by resvg from the SVG, match the composite
+    table = chart.placements
+    first = table[table.y < 30]
+    part = to_svg(chart.canvas, first, chart.layers, chart._units.colors[:len(first)], [""] * len(first))
+    truth = png_array(part, chart.canvas, 2.0).astype(float)[:50, :, 3]
+    drawn = img[:50, :, 3]
+    assert abs(drawn.sum() / truth.sum() - 1) < 0.03
+    # and every unit is drawn: ink within 2 px of each centre
+    x, y = (np.rint(table[["x", "y"]].to_numpy() * 2).astype(int) + 2).T
+    ink = np.pad(img[..., 3], 2).cumsum(0).cumsum(1)   # box sums over 5 x 5 px
+    assert (ink[y + 2, x + 2] - ink[y - 3, x + 2] - ink[y + 2, x - 3] + ink[y - 3, x - 3] > 0).all()

@@ -5,7 +5,9 @@ Kernels import this checkout (PYTHONPATH), not an installed copy.
 """
 from __future__ import annotations
 
+import base64
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -43,8 +45,12 @@ def test_nbconvert_html_shows_the_laid_out_chart(tmp_path, kernel_env):
                    check=True, env=kernel_env, capture_output=True, timeout=400)
     html = (tmp_path / "chart.html").read_text()
     assert "UnitoPia object at 0x" not in html
-    assert html.count('class="unit"') == 12              # the layout, in the widget's own cell
-    assert "Twelve rows" in html and 'class="legend"' in html
+    # the layout, in the widget's own cell: nbconvert draws an SVG output as an <img>
+    images = re.findall(r'<img [^>]*src="data:image/svg\+xml;base64,([^"]+)"', html)
+    assert len(images) == 1
+    svg = base64.b64decode(images[0]).decode()
+    assert svg.startswith('<svg class="unitopia-static" ') and svg.count('class="unit"') == 12
+    assert "Twelve rows" in svg and 'class="legend"' in svg
 
 
 def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel_env):

@@ -13,6 +13,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.design.bezier import fit_bezier
+from unitopia_widget.layout.solver import Cancelled
 from test_runner import assert_frame_is_layout, poll
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -122,24 +123,63 @@ def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
     assert w.legend_image == {}
 
 
-def test_the_static_output_carries_the_layout_as_an_image(df):
+def test_the_static_output_shows_the_chart_trusted_or_not(df):
     w = uw.UnitoPia(df, size="v", iterations=20)
     data, _ = w._repr_mimebundle_()
     assert "application/vnd.jupyter.widget-view+json" in data
-    assert "UnitoPia chart: 8 rows in 1 layer(s), not laid out yet" in data["text/plain"]
-    assert "image/svg+xml" not in w._static.bundle()
+    view_text = "UnitoPia chart: 8 rows in 1 layer(s) (the live widget; its image follows)"
+    assert data["text/plain"] == view_text              # no run state in it that would go stale
+    before = w._static.bundle()
+    assert "not laid out yet" in before["text/plain"] and "image/png" not in before
+    assert before["image/svg+xml"].startswith('<svg class="unitopia-static" ')
     w.run(wait=True)
+    assert w._repr_mimebundle_()[0]["text/plain"] == view_text
     data = w._static.bundle()
-    assert data["image/svg+xml"].count('class="unit"') == len(df)
-    assert data["text/html"].count('class="unit"') == len(df)
-    assert "display:none" in data["text/html"]           # hidden after a live view only
-    ids = re.findall(r'id="([^"]+)"', data["image/svg+xml"])
-    refs = re.findall(r'href="#([^"]+)"', data["image/svg+xml"])
+    # JupyterLab shows an untrusted output in its first safe type by rank, and sanitised
+    # text/html is safe and ranks before image/png: the bundle holds none
+    assert set(data) == {"text/plain", "image/svg+xml", "image/png"}
+    assert data["text/plain"] == "UnitoPia chart: 8 rows in 1 layer(s), status done"
+    svg = data["image/svg+xml"]
+    assert svg.startswith('<svg class="unitopia-static" ')   # what the widget's CSS hides
+    assert svg.count('class="unit"') == len(df)
+    ids = re.findall(r'id="([^"]+)"', svg)
+    refs = re.findall(r'href="#([^"]+)"', svg)
     assert ids and set(refs) <= set(ids) and all(i.startswith("c") for i in ids)
     assert base64.b64decode(data["image/png"])[:8] == b"\x89PNG\r\n\x1a\n"
     state = w.get_state()                        # what a saved notebook keeps of the widget
     assert len(state["frame"]) == 16 * len(df) and len(state["units"]) == 16 * len(df)
     assert state["marks"] and state["status"] == "done"
+
+    def fails(scale):
+        raise ValueError("SVG data parsing failed cause nodes limit reached")
+
+    w._chart.to_png = fails   # a PNG that cannot be drawn: said, and no older image kept
+    with pytest.warns(RuntimeWarning, match="its PNG could not be drawn: ValueError: SVG data"):
+        data = w._static.bundle()
+    assert set(data) == {"text/plain", "image/svg+xml"}
+    assert data["text/plain"].endswith("its PNG could not be drawn: ValueError: SVG data parsing "
+                                       "failed cause nodes limit reached")
+
+
+def test_progress_starts_afresh_at_each_run(df):
+    w = uw.UnitoPia(df, size="v", iterations=30)
+    w.run(wait=True)
+    assert w.progress["iteration"] > 0 and w.progress["done"]
+
+    def stopped_before_its_first_step(**kwargs):
+        raise Cancelled("stopped")
+
+    w._chart.layout = stopped_before_its_first_step
+    w.run(wait=True)
+    assert w.status == "stopped"
+    assert w.progress == {"iteration": 0, "max_iterations": 30, "loss": None, "done": True}
+
+
+def test_a_sketch_too_large_to_draw_is_blamed_at_load_time():
+    with pytest.raises(ValueError, match=r"sketch \(width 1e\+300, points spanning 10 x 10\): draws nothing"):
+        uw.Mark.sketch([[[0, 0], [10, 5], [0, 10]]], width=1e300)
+    with pytest.raises(ValueError, match=r"sketch .*: a mark 1e\+300 x 11 is more than 1e\+06 times wider"):
+        uw.Mark.sketch([[[0, 0], [1e300, 5], [0, 10]]], width=1)
 
 
 # --- odd inputs ------------------------------------------------------------------------

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import warnings
 from numbers import Integral
 
@@ -20,9 +19,8 @@ from .layout.frames import Frames
 from .design.encodings import (NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields,
                                warn_small_marks)
 from .output import animation, html
-from .output.export import svg_size, to_png
 from .output.files import atomic_write
-from .output.publish import PageOptions, export_svg
+from .output.publish import PageOptions, export_png, export_svg
 from .io.images import image_data_url, load_image
 from .hand import HandControl
 from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
@@ -42,7 +40,6 @@ MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
-_XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def check_kwargs(owner: str, kwargs: dict, allowed) -> None:
@@ -319,6 +316,17 @@ class Chart(HandControl):
         ``axes``: draw the axes (or band labels) of ``x=``/``y=`` as ``<g class="axis">``.
         The size legend is area-true at the layout's scale; layers bound to the same
         size column share one size legend, which says so."""
+        return export_svg(self, self._export_units(), legend, title, caption, outline, axes)
+
+    def to_png(self, scale: float = 2.0, legend=None, title=None, caption=None,
+               outline: bool = False, axes: bool = False) -> bytes:
+        """PNG bytes of ``to_svg``'s chart at ``scale`` (in (0, 8]) px per canvas px; each
+        distinct mark is rendered once and composited, so any chart that lays out exports."""
+        return export_png(self, self._export_units(), legend, title, caption, outline, axes,
+                          scale)
+
+    def _export_units(self):
+        """The units an export draws: the layout's, checked against the current layers."""
         if self.placements is None:
             raise RuntimeError("no layout yet: call run() (or run(wait=True)) first")
         gone = sorted(set(self.placements["layer"]) - {layer.name for layer in self.layers})
@@ -333,9 +341,7 @@ class Chart(HandControl):
         units, placed = self._units, self._placed
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
-        svg = export_svg(self, units, legend=legend, title=title, caption=caption, outline=outline,
-                         axes=axes)
-        return _XML_ILLEGAL.sub("\ufffd", svg)   # control characters in the data: not XML
+        return units
 
     def save(self, path, legend=None, title=None, caption=None, outline: bool = False,
              fps=None, seconds=None, axes: bool = False) -> None:
@@ -349,7 +355,7 @@ class Chart(HandControl):
         if (fps is not None or seconds is not None) and ext not in animation.FORMATS:
             raise ValueError(f"save: fps and seconds are for an animation "
                              f"({', '.join(animation.FORMATS)}), not {ext!r}")
-        if ext in (".svg", ".png", ".html") + animation.FORMATS:
+        if ext in (".svg", ".html") + animation.FORMATS:
             svg = self.to_svg(legend=legend, title=title, caption=caption, outline=outline,
                               axes=axes)
         if ext in animation.FORMATS:
@@ -362,7 +368,7 @@ class Chart(HandControl):
         elif ext == ".svg":
             atomic_write(path, svg.encode())
         elif ext == ".png":
-            atomic_write(path, to_png(svg, svg_size(svg), 2.0))
+            atomic_write(path, self.to_png(2.0, legend, title, caption, outline, axes))
         elif ext == ".json":
             atomic_write(path, json.dumps(self.design(), indent=1).encode())
         else:

@@ -170,9 +170,11 @@ def test_run_from_python_streams_frames_tooltip_and_second_view(lab):
     assert lab.eval("[w.status, w.frame_count, len(w.placements)]") == ["done", final, 150]
     # The static image after the view (for nbconvert and static viewers) is refreshed at
     # the end of the run and hidden while the live view shows.
-    static = page.locator(".unitopia-static")
-    page.wait_for_function("() => document.querySelectorAll('.unitopia-static .unit').length === 150",
-                           timeout=10_000, polling=200)
+    static = page.locator('img[src*="unitopia-static"]')
+    page.wait_for_function(
+        """() => [...document.querySelectorAll('img[src*="unitopia-static"]')]
+                 .some(i => decodeURIComponent(i.src).split('class="unit"').length === 151)""",
+        timeout=10_000, polling=200)
     assert static.count() == 1 and not static.first.is_visible()
 
     # Hover the biggest mark with the select tool: the tooltip shows its row.
@@ -262,6 +264,82 @@ def test_stop_keeps_the_last_frame(lab):
     gap = lab.eval(frame_gap("small"))
     assert gap[0] < 1e-3 and gap[1] < 1e-4, f"the last frame sent differs from the layout by {gap}"
     assert painted_pixels(small) > 500
+
+
+# --- 4. two views of one widget, one undo history -------------------------------------------
+
+def test_two_views_share_one_undo_history(lab):
+    page = lab.page
+    lab.open([SETUP, 'w = uw.UnitoPia(df, mark="circle", size="v")\nw'])
+    first = widget(lab, 1)
+    second = widget(lab, lab.run_cell(None, "w")["index"])
+    use_tool(first, "container-rect")
+    drag(page, first.locator(STAGE), [(150, 100), (400, 260), (650, 420)], steps=5)
+    assert lab.wait_until("getattr(w.layers[0].container, 'kind', None) == 'rect'")
+    use_tool(second, "force-point")
+    click(page, second.locator(STAGE), 400, 390)
+    assert lab.wait_until("len(w.layers[0].forces) == 1")
+    # Undo in the first view takes back the last edit of either view: the force
+    first.locator('[data-action="undo"]').click()
+    assert lab.wait_until("len(w.layers[0].forces) == 0")
+    time.sleep(1.0)   # any further design update would have arrived by now
+    assert lab.eval("[getattr(w.layers[0].container, 'kind', None), len(w.layers[0].forces)]") == ["rect", 0]
+    second.locator('[data-action="redo"]').click()
+    assert lab.wait_until("len(w.layers[0].forces) == 1")
+    assert lab.eval("getattr(w.layers[0].container, 'kind', None)") == "rect"
+
+
+# --- 5. a kernel restart during a run -----------------------------------------------------------
+
+def test_a_kernel_restart_mid_run_leaves_no_running_view_and_stop_does_not_throw(lab):
+    page = lab.page
+    lab.open([SETUP, "big = pd.DataFrame({'v': rng.uniform(0.5, 10.0, 2000)})\n"
+                     "w = uw.UnitoPia(big, mark='circle', size='v', iterations=3000)\nw"])
+    root = widget(lab, 1)
+    root.locator('[data-action="run"]').click()
+    page.wait_for_function("el => el.dataset.status === 'running' && Number(el.dataset.frames) >= 2",
+                           arg=root.element_handle(), timeout=60_000, polling=100)
+    page.evaluate("jupyterapp.shell.currentWidget.sessionContext.session.kernel.restart()")
+    page.wait_for_function("el => el.dataset.kernel === 'gone'", arg=root.element_handle(),
+                           timeout=30_000, polling=100)
+    word = root.locator(".ut-status-word")
+    assert word.text_content() == "no kernel"
+    root.locator('[data-action="stop"]').evaluate("b => b.click()")   # enabled or not: no throw
+    root.evaluate("el => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    assert word.text_content() == "no kernel"   # the uncaught-error check is the fixture's
+
+
+# --- 6. an executed notebook reopened without trust ------------------------------------------
+
+def test_an_untrusted_executed_notebook_shows_the_chart_as_an_image(lab):
+    import subprocess
+    import sys
+
+    import nbformat
+
+    page = lab.page
+    path = lab.server.root_dir / f"{lab.name}.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(SETUP + "w = uw.UnitoPia(df.head(40), mark='circle', size='v', "
+                                          "iterations=30)\nw"),
+        nbformat.v4.new_code_cell("w.run(wait=True)\nw.status")]), path)
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2]), "OMP_NUM_THREADS": "1"}
+    subprocess.run([sys.executable, "-m", "jupyter", "nbconvert", "--to", "notebook", "--execute",
+                    "--inplace", str(path)], check=True, env=env, capture_output=True, timeout=300)
+    # not signed here: JupyterLab opens it untrusted and renders only safe types
+    page.goto(f"{lab.server.url}/lab/tree/{path.name}?reset&token={lab.server.token}")
+    first = page.locator(".jp-Cell").first.locator(".jp-OutputArea-output")
+    first.last.wait_for(state="visible", timeout=60_000)
+    assert page.evaluate("jupyterapp.shell.currentWidget.content.model.cells.get(0).trusted") is False
+    outputs = first.evaluate_all("els => els.map(e => [e.dataset.mimeType, e.innerText.trim(), "
+                                 "e.getBoundingClientRect().height])")
+    view, image = outputs
+    assert view[0] == "text/plain" and "not laid out" not in view[1] and "status" not in view[1]
+    assert image[0] == "image/png" and image[1] == ""          # the chart, no text wall
+    img = first.last.locator("img")
+    assert img.get_attribute("src").startswith("data:image/png;base64,")
+    assert img.evaluate("i => i.complete && i.naturalWidth") > 700
+    assert image[2] < 700, "an image of the chart, not a wall of tooltip text"
 
 
 # --- the screenshot for the docs (opt-in) --------------------------------------------------

@@ -32,6 +32,7 @@ DEFAULT_COLOR = "#4e79a7"
 FOOTPRINTS = ("silhouette", "ink")   # what a mark collides with: ink with holes filled, or ink
 FILL_FRACTION_SIDE = 512
 _BOX_SEARCH_SIDE = 1024
+MAX_ASPECT = 1e6   # a mark's width / height (and height / width) at most: float32 rendering
 _ROOT_ONLY = {"width", "height", "viewBox", "x", "y", "preserveAspectRatio", "version",
               "baseProfile", "xmlns"}
 _UNITS = {"": 1.0, "px": 1.0, "pt": 4 / 3, "pc": 16.0, "mm": 96 / 25.4, "cm": 96 / 2.54, "in": 96.0}
@@ -102,6 +103,20 @@ def _view(root: ET.Element) -> tuple[float, float, float, float]:
     if not all(map(math.isfinite, (x, y, w, h))) or w <= 0 or h <= 0:
         raise ValueError(f"SVG has an invalid viewBox {vb[:60]!r}")
     return (x, y, w, h)
+
+
+def _check_drawable(root: ET.Element, box, what: str) -> None:
+    """A ValueError naming ``what`` unless the mark drawn in ``box`` has ink: an aspect
+    within ``MAX_ASPECT`` and numbers resvg's 32-bit floats hold."""
+    w, h = box[2], box[3]
+    if not (w > 0 and h > 0 and 1 / MAX_ASPECT <= w / h <= MAX_ASPECT):
+        raise ValueError(f"{what}: a mark {w:g} x {h:g} is more than {MAX_ASPECT:g} times wider "
+                         f"than tall (or taller than wide); draw it less elongated")
+    pw, ph = _pixel_size(w / h, 64)
+    if not svgsafe.render_svg(_document(root, box), pw, ph)[..., 3].any():
+        raise ValueError(f"{what}: draws nothing (numbers this large are past what the renderer "
+                         f"holds); keep the points and the width under 1e30 and the width "
+                         f"near the strokes' size")
 
 
 def _embed(root: ET.Element, region, def_id: str, color: str | None) -> ET.Element:
@@ -308,6 +323,9 @@ class Mark:
             else:
                 d = "M" + " L".join(f"{_num(x)} {_num(y)}" for x, y in line)
                 ET.SubElement(group, "path", d=d)
+        span = pts.max(axis=0) - pts.min(axis=0)
+        _check_drawable(root, box, f"sketch (width {width:g}, points spanning "
+                                   f"{span[0]:g} x {span[1]:g})")
         spec = {"kind": "sketch", "strokes": [line.tolist() for line in lines],
                 "width": width, "color": color}
         return cls("sketch", spec, root=root, box=box)

@@ -13,8 +13,11 @@ from numbers import Real
 def _margin_v2_to_v3(d: dict) -> dict:
     """Version 3: a mark's footprint is its box x (1 + margin), so neighbours stand
     margin x size apart; before, each mark was padded by margin x size (gap 2 x margin).
-    A numeric margin doubles; a margin bound to a column keeps its column, with a warning
-    that its values now give the whole gap (double the column to keep the look)."""
+    A numeric margin doubles. A margin bound to a column keeps its column, with a warning
+    that its values now give the whole gap (double the column to keep the look): the
+    design holds the column's name, not its values, and a bound margin is the column's
+    value as it is (no scale of its own to double), so no change to the file alone keeps
+    the look."""
     for layer in d.get("layers") or []:
         enc = layer.get("encodings") if isinstance(layer, dict) else None
         if not isinstance(enc, dict):

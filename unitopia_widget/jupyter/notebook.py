@@ -1,31 +1,41 @@
 """The widget's place in a notebook's saved output: a static image after the live view.
 
 Displaying a widget writes two outputs: the widget view, then a static output
-holding the layout (``text/html`` with the SVG inline, ``image/svg+xml``,
-``image/png``, ``text/plain``) under a ``display_id``, refreshed when a run ends.
+holding the layout (``image/svg+xml``, ``image/png``, ``text/plain``) under a
+``display_id``, refreshed when a run ends.
 
 Why a second output and not one more type in the view's bundle: nbconvert
 ``--execute`` saves the widget state, and nbconvert's HTML exporter then always
 picks the widget view (it renders only with a widget manager from a CDN), so a
 static type beside it never shows. The static output shows wherever the live
 widget does not render (nbconvert HTML, static viewers, a notebook reopened
-without a kernel); where it does render (JupyterLab, Notebook 7), a style rule in
-the static output hides it right after a live ``.unitopia`` view.
+without a kernel); where it does render (JupyterLab, Notebook 7), a rule of the
+widget's CSS hides it right after a live ``.unitopia`` view (its SVG's root has
+the class ``unitopia-static``, which JupyterLab's ``<img src>`` of it spells out).
+
+Why no ``text/html``: JupyterLab shows an untrusted output (a notebook executed
+elsewhere, not yet trusted) in its first *safe* type by rank, and sanitised HTML
+is safe and ranks first: the SVG's elements are stripped and their tooltip text
+left as a wall, and ``data:`` images are dropped. Without it, a trusted notebook
+shows the SVG (styles and all; it ranks before PNG), an untrusted one the PNG,
+and nbconvert's HTML the SVG inline (with its tooltips). The view's own
+``text/plain`` (what an untrusted notebook shows for the view) names the chart
+and no run state, which it could not keep true.
 """
 from __future__ import annotations
 
 import base64
 import re
 import uuid
+import warnings
 from html import unescape
 from xml.sax.saxutils import escape
 
 from ..io import svgsafe
-from ..output.export import svg_size, to_png
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
-HIDE_AFTER_LIVE = ("<style>.jp-OutputArea-child:has(.unitopia[data-unitopia]) + "
-                   ".jp-OutputArea-child:has(.unitopia-static){display:none}</style>")
+VIEW_PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s) (the live widget; its image follows)"
+MARK = '<svg class="unitopia-static" '   # the static image's root, found by the widget's CSS
 _REFS = re.compile(r'(\bid="|href="#|url\(#)')
 _STYLE = re.compile(r"(<style\b[^>]*>)(.*?)(</style>)", re.S)
 
@@ -53,6 +63,11 @@ class StaticDisplay:
         state = "not laid out yet (run it)" if chart.placements is None else f"status {w.status}"
         return PLAIN.format(rows=len(chart.df), layers=len(chart.layers), state=state)
 
+    def view_plain(self) -> str:
+        """The live view's ``text/plain``: what the chart is, no state that could go stale."""
+        chart = self.widget._chart
+        return VIEW_PLAIN.format(rows=len(chart.df), layers=len(chart.layers))
+
     def svg(self) -> str | None:
         """The current layout as exported (legend, title, caption), ids prefixed so that
         several charts inline in one page keep their own definitions; None without one."""
@@ -61,18 +76,22 @@ class StaticDisplay:
         except RuntimeError:   # no layout yet, or one that no longer matches the layers
             return None
         prefix = "c" + self.display_id[len("unitopia-"):][:8]
-        return prefix_ids(svg, prefix)
+        return MARK + prefix_ids(svg, prefix)[len("<svg "):]
 
     def bundle(self) -> dict:
-        """The static output's MIME bundle."""
+        """The static output's MIME bundle. A layout whose PNG cannot be drawn has none:
+        its text says why (an untrusted notebook shows it), and no older image stays."""
         plain = self.plain()
         svg = self.svg()
         if svg is None:
-            return {"text/plain": plain,
-                    "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static"><pre>{plain}</pre></div>'}
-        png = base64.b64encode(to_png(svg, svg_size(svg), 1.0)).decode()
-        return {"text/plain": plain, "image/svg+xml": svg, "image/png": png,
-                "text/html": f'{HIDE_AFTER_LIVE}<div class="unitopia-static">{svg}</div>'}
+            return {"text/plain": plain, "image/svg+xml": _note(plain, self.widget._chart.canvas[0])}
+        try:
+            png = base64.b64encode(self.widget._chart.to_png(1.0)).decode()
+        except Exception as exc:   # no PNG: say why, and show no older one
+            why = f"its PNG could not be drawn: {type(exc).__name__}: {str(exc)[:200]}"
+            warnings.warn(f"the static image: {why}", RuntimeWarning, stacklevel=2)
+            return {"text/plain": f"{plain}; {why}", "image/svg+xml": svg}
+        return {"text/plain": plain, "image/svg+xml": svg, "image/png": png}
 
     def show(self) -> None:
         from IPython.display import display
@@ -84,3 +103,11 @@ class StaticDisplay:
         if self.shown:
             from IPython.display import update_display
             update_display(self.bundle(), raw=True, display_id=self.display_id)
+
+
+def _note(text: str, width: float) -> str:
+    """A one-line SVG image of ``text``, ``width`` px wide (the static image's place
+    before a layout)."""
+    return (f'{MARK}xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" height="32" '
+            f'viewBox="0 0 {width:.0f} 32"><text x="8" y="21" font-family="sans-serif" '
+            f'font-size="13">{escape(text)}</text></svg>')

@@ -20,7 +20,6 @@ from ..design import icons
 from ..chart import ARGUMENTS, Chart, check_kwargs
 from ..design.files import design_code, load_design
 from ..design.encodings import rgba
-from ..output.export import svg_size, to_png
 from . import keep
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
@@ -267,7 +266,8 @@ class UnitoPia(anywidget.AnyWidget):
         self._frame_error = None
         with self.hold_sync():
             self.status, self.frame_count, self.stale = "running", 0, False
-            self.progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None, "done": False}
+            self._progress = {"iteration": 0, "max_iterations": self._cap(), "loss": None}
+            self.progress = {**self._progress, "done": False}   # this run's, from 0
         self._laid_out = _layout_key(self._chart.design())
         if not self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error,
                                   ticket=ticket):
@@ -490,12 +490,10 @@ class UnitoPia(anywidget.AnyWidget):
             self.send({"type": "notice", "text": "Export waits for the layout: press it again "
                                                  "when the run has ended (or press Stop first)."})
             return
-        svg = self._chart.to_svg()
         if fmt == "png":
-            data = "data:image/png;base64," + base64.b64encode(
-                to_png(svg, svg_size(svg), 2.0)).decode()
+            data = "data:image/png;base64," + base64.b64encode(self._chart.to_png(2.0)).decode()
         elif fmt == "svg":
-            data = svg
+            data = self._chart.to_svg()
         else:
             raise ValueError(f"export format must be 'svg' or 'png', got {fmt!r}")
         self.send({"type": "export", "format": fmt, "data": data})
@@ -506,7 +504,7 @@ class UnitoPia(anywidget.AnyWidget):
         """The widget view, with a text/plain that says what the chart is."""
         view = super()._repr_mimebundle_(**kwargs)
         data, metadata = view if isinstance(view, tuple) else (view or {}, {})
-        return {**data, "text/plain": self._static.plain()}, metadata
+        return {**data, "text/plain": self._static.view_plain()}, metadata
 
     def _ipython_display_(self) -> None:
         """The widget view, then its static image (notebook.py), refreshed when a run ends."""

@@ -19,6 +19,7 @@ from PIL import Image
 
 from ..io.svgsafe import SVG_NS
 
+_XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 ICON_CREDIT = ("<!-- Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0, "
                "https://fontawesome.com/license/free -->")
 
@@ -72,7 +73,7 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
     if page is not None and page.overlay:
         out.append(page.overlay)
     out.append("</svg>")
-    return "\n".join(out)
+    return _XML_ILLEGAL.sub("\ufffd", "\n".join(out))   # control characters in the data: not XML
 
 
 def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:

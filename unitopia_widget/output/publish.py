@@ -11,6 +11,7 @@ import numpy as np
 
 from ..layout import engine
 from . import legend as legend_mod, legend_draw
+from .composite import chart_png
 from .export import to_svg
 from .axes import axes_svg
 from .outline import outlines
@@ -90,6 +91,22 @@ def legend_image(chart) -> tuple[str, float, float] | None:
 def export_svg(chart, units, legend=None, title=None, caption=None, outline=False,
                axes=False) -> str:
     """The laid-out chart of ``units`` with its page around it (see ``Chart.to_svg``)."""
+    return to_svg(*_drawing(chart, units, legend, title, caption, outline, axes))
+
+
+def export_png(chart, units, legend=None, title=None, caption=None, outline=False,
+               axes=False, scale: float = 2.0) -> bytes:
+    """PNG bytes of ``export_svg``'s chart at ``scale`` px per canvas px, each distinct
+    mark rendered once (``composite``)."""
+    if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not 0 < scale <= 8:
+        raise ValueError(f"to_png: scale must be a number in (0, 8], got {scale!r:.40}")
+    canvas, table, layers, colors, _titles, background, page, under = _drawing(
+        chart, units, legend, title, caption, outline, axes)
+    return chart_png(canvas, table, layers, colors, background, page, under, scale)
+
+
+def _drawing(chart, units, legend, title, caption, outline, axes) -> tuple:
+    """``to_svg``'s arguments for the chart of ``units`` and the export's options."""
     opts = chart.page
     title = opts.title if title is None else check_text("title", title, TITLE_CHARS)
     caption = opts.caption if caption is None else check_text("caption", caption, CAPTION_CHARS)
@@ -108,7 +125,7 @@ def export_svg(chart, units, legend=None, title=None, caption=None, outline=Fals
         raise ValueError("axes=True draws the axes of x= and y=, but the layout binds neither; "
                          "bind a layer's x= or y= to a column and run the layout again")
     page = compose(chart.canvas, sections(chart, units) if show else None, position, title, caption)
-    return to_svg(chart.canvas, chart.placements, chart.layers, units.colors, chart.titles(units),
-                  chart.background, page=page,
-                  under=(outlines(chart.layers, chart.canvas) if outline else "")
-                  + (axes_svg(drawn, chart.canvas) if axes else ""))
+    under = (outlines(chart.layers, chart.canvas) if outline else "") \
+        + (axes_svg(drawn, chart.canvas) if axes else "")
+    return (chart.canvas, chart.placements, chart.layers, units.colors, chart.titles(units),
+            chart.background, page, under)
