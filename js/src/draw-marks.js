@@ -5,13 +5,11 @@
 // units: Float32Array (N, 4) [layer, mark, base w, base h]; frame: (N, 4) [x, y, deg, scale].
 
 const RAD = Math.PI / 180;
-const CHECK_EVERY = 64; // marks drawn between two looks at the clock
-const clock = () => performance.now();
 
 /** Draws every mark (and the selection outlines); returns the largest side in device px. */
 export function drawMarks(ctx, k, state) {
   const n = markCount(state);
-  const side = drawRange(ctx, k, state, 0, n, Infinity);
+  const side = drawRange(ctx, k, state, 0, n);
   drawSelection(ctx, k, state);
   return side.maxSide * k;
 }
@@ -21,16 +19,11 @@ export function markCount({ units, frame }) {
   return Math.floor(Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4);
 }
 
-/**
- * Draws marks from..until-1 until `now()` (ms) passes `deadline`; returns {next, maxSide}:
- * the first mark not drawn and the largest side drawn (canvas px).
- */
-export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until, deadline, now = clock) {
+/** Draws marks from..until-1; returns {maxSide}: the largest side drawn (canvas px). */
+export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
   let maxSide = 0;
   let upright = false; // is the base transform (no rotation) set?
-  let i = from;
-  for (; i < until; i++) {
-    if (deadline !== Infinity && (i - from) % CHECK_EVERY === CHECK_EVERY - 1 && now() > deadline) break;
+  for (let i = from; i < until; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
     const h = units[4 * i + 3] * s;
@@ -64,7 +57,7 @@ export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until
     }
   }
   ctx.setTransform(1, 0, 0, 1, 0, 0);
-  return { next: i, maxSide };
+  return { maxSide };
 }
 
 /** Outlines the selected marks (state.selected: a Set of unit indices). */

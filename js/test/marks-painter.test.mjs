@@ -8,6 +8,7 @@ function fakeCanvas(log, name) {
   const ctx = {
     setTransform() {},
     clearRect: () => log.push([name, "clear"]),
+    getImageData() {},
     drawImage: (img, x) => log.push([name, img.tag, x]),
     strokeRect() {},
     beginPath() {},
@@ -28,12 +29,12 @@ function state(n, x = 10) {
 
 function painter(log, tick) {
   let t = 0;
-  return new MarksPainter(fakeCanvas(log, "visible"), { makeCanvas: () => fakeCanvas(log, "back"), now: () => (t += tick), sliceMs: 5 });
+  return new MarksPainter(fakeCanvas(log, "visible"), { makeCanvas: () => fakeCanvas(log, "back"), now: () => (t += tick), sliceMs: 5, firstSlice: 100 });
 }
 
 test("a paint that outlasts its slice goes on in later steps and shows only when whole", () => {
   const log = [];
-  const p = painter(log, 1); // 1 ms a look at the clock: 64 marks between looks
+  const p = painter(log, 1); // each slice takes 1 ms: 100 marks first, then 500 a slice
   const s = state(1000);
   p.start(1, s);
   const steps = [];

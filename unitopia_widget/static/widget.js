@@ -1151,17 +1151,13 @@ function segment(ctx, a, b) {
 
 // src/draw-marks.js
 var RAD = Math.PI / 180;
-var CHECK_EVERY = 64;
-var clock = () => performance.now();
 function markCount({ units, frame }) {
   return Math.floor(Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4);
 }
-function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until, deadline, now = clock) {
+function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
   let maxSide = 0;
   let upright = false;
-  let i = from;
-  for (; i < until; i++) {
-    if (deadline !== Infinity && (i - from) % CHECK_EVERY === CHECK_EVERY - 1 && now() > deadline) break;
+  for (let i = from; i < until; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
     const h2 = units[4 * i + 3] * s;
@@ -1195,7 +1191,7 @@ function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until, deadl
     }
   }
   ctx.setTransform(1, 0, 0, 1, 0, 0);
-  return { next: i, maxSide };
+  return { maxSide };
 }
 function drawSelection(ctx, k, state) {
   const { units, frame, selected } = state;
@@ -1227,17 +1223,20 @@ function rgba(colors, i) {
 
 // src/marks-painter.js
 var SLICE_MS = 8;
+var BACK_OPTIONS = { willReadFrequently: true };
+var FIRST_SLICE = 512;
 var MarksPainter = class {
   /**
    * target: the visible canvas; makeCanvas(): a new canvas for the back buffer;
    * now(): a clock in ms (performance.now by default).
    */
-  constructor(target, { makeCanvas = () => document.createElement("canvas"), now = () => performance.now(), sliceMs = SLICE_MS } = {}) {
+  constructor(target, { makeCanvas = () => document.createElement("canvas"), now = () => performance.now(), sliceMs = SLICE_MS, firstSlice = FIRST_SLICE } = {}) {
     this.target = target;
     this.back = null;
     this.makeCanvas = makeCanvas;
     this.now = now;
     this.sliceMs = sliceMs;
+    this.perSlice = firstSlice;
     this.frame = new Float32Array(0);
     this.state = null;
     this.next = 0;
@@ -1257,7 +1256,7 @@ var MarksPainter = class {
       this.back.width = this.target.width;
       this.back.height = this.target.height;
     }
-    const ctx = this.back.getContext("2d");
+    const ctx = this.back.getContext("2d", BACK_OPTIONS);
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, this.back.width, this.back.height);
     this.next = 0;
@@ -1272,8 +1271,14 @@ var MarksPainter = class {
   step() {
     if (!this.busy) return false;
     const n = markCount(this.state);
-    const done = drawRange(this.back.getContext("2d"), this.k, this.state, this.next, n, this.now() + this.sliceMs, this.now);
-    this.next = done.next;
+    const back = this.back.getContext("2d", BACK_OPTIONS);
+    const t0 = this.now();
+    const until = Math.min(n, this.next + this.perSlice);
+    const done = drawRange(back, this.k, this.state, this.next, until);
+    back.getImageData(0, 0, 1, 1);
+    const ms = Math.max(1e-3, this.now() - t0);
+    if (until > this.next) this.perSlice = Math.max(16, Math.floor(this.sliceMs * (until - this.next) / ms));
+    this.next = until;
     this.maxSide = Math.max(this.maxSide, done.maxSide);
     if (this.next < n) return false;
     const ctx = this.target.getContext("2d");
