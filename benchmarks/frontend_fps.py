@@ -14,7 +14,7 @@ page it measures:
 
 Prints a table; ``--append`` adds it to benchmarks/RESULTS.md.
 
-    python benchmarks/frontend_fps.py [--sizes 1000 20000] [--iterations 60] [--append]
+    python benchmarks/frontend_fps.py [--sizes 1000 20000] [--iterations 150 40] [--append]
 
 Needs the built bundle, jupyterlab, playwright and Chromium at /usr/bin/chromium.
 """
@@ -197,7 +197,8 @@ def machine() -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1000, 20000])
-    parser.add_argument("--iterations", type=int, default=60, help="iterations cap of each run")
+    parser.add_argument("--iterations", type=int, nargs="+", default=[150, 40],
+                        help="iterations cap of each size's run (the last one for the sizes after)")
     parser.add_argument("--timeout", type=float, default=300, help="seconds one run may take")
     parser.add_argument("--append", action="store_true", help="append the table to benchmarks/RESULTS.md")
     parser.add_argument("--profile", action="store_true", help="print the page's functions by self time")
@@ -214,8 +215,9 @@ def main() -> None:
         try:
             with sync_playwright() as pw:
                 browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-                for n in opts.sizes:
-                    rows.append(measure(browser, url, token, folder, n, n <= 5000, opts.iterations, opts.timeout,
+                for k, n in enumerate(opts.sizes):
+                    iterations = opts.iterations[min(k, len(opts.iterations) - 1)]
+                    rows.append(measure(browser, url, token, folder, n, n <= 5000, iterations, opts.timeout,
                                         opts.profile))
                     print(table(rows[-1:]).splitlines()[-1], flush=True)
                 browser.close()
@@ -227,7 +229,8 @@ def main() -> None:
     print(text)
     if opts.append:
         with open(ROOT / "benchmarks" / "RESULTS.md", "a") as out:
-            out.write(f"\n`python benchmarks/frontend_fps.py --iterations {opts.iterations}`; {where}. "
+            out.write(f"\n`python benchmarks/frontend_fps.py --sizes {' '.join(map(str, opts.sizes))} "
+                      f"--iterations {' '.join(map(str, opts.iterations))}`; {where}. "
                       f"{opts.note}\n```\n{text}\n```\n")
 
 
