@@ -10,7 +10,8 @@ page it measures:
   pixels: the widget repaints only when the frame on screen moved) per second while running;
 - ``frames/s``: frames received from the kernel per second while running;
 - long tasks (``PerformanceObserver('longtask')``, over 50 ms) from the widget's display to
-  a second after the run ends: how many, and the longest.
+  a second after the run ends: how many, the longest, and when it started (s from the run
+  cell, beside the run's end: negative is while the widget was shown).
 
 Prints a table; ``--append`` adds it to benchmarks/RESULTS.md.
 
@@ -158,11 +159,13 @@ def measure(browser, url, token, folder: Path, n: int, sized: bool, iterations: 
     finally:
         context.close()
     mine = [d for s, d in tasks if s >= shown]
+    worst = max(((d, s) for s, d in tasks if s >= shown), default=(0.0, w["t0"]))
     seconds = (w["end"] - w["start"]) / 1000
     return {"n": n, "sized": sized, "iterations": iterations_run,
             "first": (w["first"] - w["t0"]) / 1000, "run": seconds,
             "fps": w["paints"] / seconds, "in": w["frames"] / seconds,
-            "long": len(mine), "longest": max(mine, default=0.0)}
+            "long": len(mine), "longest": max(mine, default=0.0),
+            "at": (worst[1] - w["t0"]) / 1000, "end": (w["end"] - w["t0"]) / 1000}
 
 
 def print_profile(profile: dict, top: int = 25) -> None:
@@ -179,10 +182,10 @@ def print_profile(profile: dict, top: int = 25) -> None:
 
 def table(rows) -> str:
     lines = [f"{'marks':>6} {'size=':>5} {'iters':>5} {'first frame s':>13} {'run s':>6} {'fps':>6} "
-             f"{'frames/s':>8} {'long tasks':>10} {'longest ms':>10}"]
+             f"{'frames/s':>8} {'long tasks':>10} {'longest ms':>10} {'at s':>6} {'run end s':>9}"]
     for r in rows:
         lines.append(f"{r['n']:>6} {'v' if r['sized'] else '-':>5} {r['iterations']:>5} {r['first']:>13.2f} "
-                     f"{r['run']:>6.1f} {r['fps']:>6.1f} {r['in']:>8.1f} {r['long']:>10} {r['longest']:>10.0f}")
+                     f"{r['run']:>6.1f} {r['fps']:>6.1f} {r['in']:>8.1f} {r['long']:>10} {r['longest']:>10.0f} {r['at']:>6.1f} {r['end']:>9.1f}")
     return "\n".join(lines)
 
 
