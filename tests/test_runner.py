@@ -108,6 +108,18 @@ def test_the_layout_thread_yields_the_cpu_to_the_front_end():
     assert os.getpriority(os.PRIO_PROCESS, threading.get_native_id()) == mine   # the caller's own stays
 
 
+def test_the_widget_offers_every_iterations_frame_to_the_throttle(df, monkeypatch):
+    seen, real = {}, engine.solve
+
+    def solve(problem, **kwargs):
+        seen.update(kwargs)
+        return real(problem, **kwargs)
+    monkeypatch.setattr(engine, "solve", solve)
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=20)
+    w.run(wait=True)
+    assert seen["frame_every"] == 1 and w.frame_count >= 2   # the start frame, then the layout
+
+
 def test_concurrent_starts_leave_one_run_and_cancel_the_other():
     for _ in range(8):   # the race is between two threads starting at once
         runner, active, outcomes, done = Runner(), [0], [], []
