@@ -7,6 +7,8 @@ Runs are small (8 marks, few iterations) so the file stays quick.
 from __future__ import annotations
 
 import copy
+import os
+import sys
 import threading
 import time
 
@@ -16,7 +18,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.jupyter.runner import Runner
+from unitopia_widget.jupyter.runner import BACKGROUND_NICE, Runner
 
 CIRCLE = uw.Mark.shape("circle")
 SKETCH = uw.Mark.sketch([[[0, 0], [12, 4], [4, 12]], [[8, 8]]], width=2.0, color="#335")
@@ -88,6 +90,34 @@ def test_the_last_frame_always_arrives_despite_the_throttle():
     runner.wait(10)
     assert done == ["result"]
     assert len(seen) < 50 and seen[-1][0, 0] == 49
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="per-thread nice is Linux's")
+def test_the_layout_thread_yields_the_cpu_to_the_front_end():
+    mine = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+    seen = []
+
+    def job(on_frame, cancel):
+        seen.append(os.getpriority(os.PRIO_PROCESS, threading.get_native_id()))
+        return 1
+    for nice, expected in ((BACKGROUND_NICE, min(19, mine + BACKGROUND_NICE)), (0, mine)):
+        runner = Runner(nice=nice)
+        runner.start(job, lambda f: None, lambda r: None, pytest.fail)
+        runner.wait(10)
+        assert seen[-1] == expected
+    assert os.getpriority(os.PRIO_PROCESS, threading.get_native_id()) == mine   # the caller's own stays
+
+
+def test_the_widget_offers_every_iterations_frame_to_the_throttle(df, monkeypatch):
+    seen, real = {}, engine.solve
+
+    def solve(problem, **kwargs):
+        seen.update(kwargs)
+        return real(problem, **kwargs)
+    monkeypatch.setattr(engine, "solve", solve)
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=20)
+    w.run(wait=True)
+    assert seen["frame_every"] == 1 and w.frame_count >= 2   # the start frame, then the layout
 
 
 def test_concurrent_starts_leave_one_run_and_cancel_the_other():

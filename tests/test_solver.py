@@ -151,8 +151,8 @@ def test_frames_are_float32_n_by_4_and_end_on_the_result():
     np.testing.assert_allclose(last[:, 1], table["y"], atol=1e-4)
     np.testing.assert_allclose(last[:, 2], table["angle"], atol=1e-4)
     assert np.all(last[:, 3] == np.float32(c.result.scale))
-    # every k-th iteration, plus the final frame
-    assert len(frames) == c.result.iterations // 5 + 1
+    # the start, every k-th iteration, and the final frame
+    assert len(frames) == 1 + c.result.iterations // 5 + 1
 
 
 def test_frames_show_the_scale_growing_in_a_closed_container():
@@ -174,7 +174,7 @@ def test_cancel_after_k_iterations(k):
     c = chart(30, iterations=300)
     table = c.layout(on_frame=frames.append, cancel=cancel, frame_every=2)
     assert c.result.cancelled and c.result.iterations == k
-    assert len(frames) == k // 2 + 1                     # k // 2 during the run, then the final one
+    assert len(frames) == 1 + k // 2 + 1          # the start, k // 2 during the run, then the final one
     assert len(table) == 30 and table[["x", "y"]].notna().all().all()
 
 

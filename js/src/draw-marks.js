@@ -6,11 +6,24 @@
 
 const RAD = Math.PI / 180;
 
-export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
-  const n = Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4;
+/** Draws every mark (and the selection outlines); returns the largest side in device px. */
+export function drawMarks(ctx, k, state) {
+  const n = markCount(state);
+  const side = drawRange(ctx, k, state, 0, n);
+  drawSelection(ctx, k, state);
+  return side.maxSide * k;
+}
+
+/** How many marks `state` ({units, frame}) can draw. */
+export function markCount({ units, frame }) {
+  return Math.floor(Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4);
+}
+
+/** Draws marks from..until-1; returns {maxSide}: the largest side drawn (canvas px). */
+export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
   let maxSide = 0;
   let upright = false; // is the base transform (no rotation) set?
-  for (let i = 0; i < n; i++) {
+  for (let i = from; i < until; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
     const h = units[4 * i + 3] * s;
@@ -43,9 +56,15 @@ export function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
       ctx.fill();
     }
   }
-  if (selected && selected.size) outlineSelected(ctx, k, units, frame, n, selected);
   ctx.setTransform(1, 0, 0, 1, 0, 0);
-  return maxSide * k;
+  return { maxSide };
+}
+
+/** Outlines the selected marks (state.selected: a Set of unit indices). */
+export function drawSelection(ctx, k, state) {
+  const { units, frame, selected } = state;
+  if (selected && selected.size) outlineSelected(ctx, k, units, frame, markCount(state), selected);
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
 }
 
 function outlineSelected(ctx, k, units, frame, n, selected) {

@@ -27,6 +27,14 @@ export function decodeUint8(value) {
   return new Uint8Array(b.buffer, b.offset, b.length);
 }
 
+/** Whether two frames (Float32Array or null) hold the same values. */
+export function sameFrame(a, b) {
+  if (!a || !b) return a === b;
+  if (a.length !== b.length) return false;
+  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
+  return true;
+}
+
 /** Shortest signed difference b - a between two angles in degrees. */
 export function angleDelta(a, b) {
   return ((((b - a) % 360) + 540) % 360) - 180;

@@ -5,11 +5,11 @@ import { commit, currentLayer, list, onModel, readDesign, redo, session, setUi, 
 import { createStage } from "./stage.js";
 import { ImageCache } from "./images.js";
 import { MarkBitmaps } from "./bitmaps.js";
-import { FrameInterpolator, decodeFloat32, decodeUint8 } from "./frames.js";
+import { FrameInterpolator, decodeFloat32, decodeUint8, sameFrame } from "./frames.js";
 import { HitIndex } from "./hit-index.js";
 import { drawScene } from "./draw-scene.js";
 import { drawOverlay } from "./draw-overlay.js";
-import { drawMarks } from "./draw-marks.js";
+import { MarksPainter } from "./marks-painter.js";
 import { makeTools } from "./tools/index.js";
 import { attachInput } from "./pointer.js";
 import { createToolbar } from "./toolbar.js";
@@ -37,6 +37,8 @@ export function renderView({ model, el, signal }) {
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
   let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = new Set();
+  const painter = new MarksPainter(stage.canvases.marks);
+  let marksPending = false; // marks changed while a paint was still going
   let raf = 0;
 
   const view = {
@@ -122,6 +124,7 @@ export function renderView({ model, el, signal }) {
     const design = view.design();
     if (stage.layout(design.canvas)) {
       ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+      painter.cancel();
       legend.place();
     }
     if (interp.step(now)) dirty.add("marks");
@@ -132,15 +135,21 @@ export function renderView({ model, el, signal }) {
       const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
       drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides, pins: { list: pinned, frame: interp.to } });
     }
-    if (dirty.has("marks")) {
+    if (dirty.has("marks")) marksPending = true;
+    if (marksPending && !painter.busy) {
+      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
+      marksPending = false;
+    }
+    if (painter.busy) {
       const t0 = performance.now();
-      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
-      bitmaps.need(px);
-      stats.paints++;
+      if (painter.step()) {
+        bitmaps.need(painter.px);
+        stats.paints++;
+      }
       stats.paintMs += performance.now() - t0;
     }
     dirty.clear();
-    if (!interp.settled || replay.playing()) raf = requestAnimationFrame(paint);
+    if (!interp.settled || painter.busy || marksPending || replay.playing()) raf = requestAnimationFrame(paint);
   }
 
   // --- trait -> view -----------------------------------------------------------
@@ -164,6 +173,7 @@ export function renderView({ model, el, signal }) {
   function onFrame() {
     const frame = decodeFloat32(model.get("frame"));
     stats.framesReceived++;
+    if (interp.to && sameFrame(frame, interp.to)) return; // nothing moved: nothing to repaint
     const had = view.hasFrame();
     interp.push(frame, performance.now());
     if (model.get("status") === "running") replay.record(frame);

@@ -8,19 +8,41 @@ started in a row leave exactly one layout, the second's. Frames reach
 from ``request()`` that has not started yet never starts). A run that does not end
 within ``stop``'s patience (a long step of its setup) is let go: its callbacks are not
 called, and the next run waits for its thread before starting.
+
+The layout thread runs at a lower CPU priority (``nice``, Linux): where the browser
+drawing the frames shares the kernel's cores, the browser comes first and the layout
+takes the rest, so the animation is not starved by the run it shows.
 """
 from __future__ import annotations
 
+import os
+import sys
 import threading
 import time
 from typing import Callable
+
+BACKGROUND_NICE = 10   # added to the layout thread's nice value: nice(1)'s default step
+
+
+def lower_priority(step: int) -> None:
+    """Raise the calling thread's nice value by ``step`` (threads it starts later, such as
+    torch's OpenMP workers, inherit it). Linux only, where a thread id names one thread;
+    elsewhere, or when refused, the thread keeps its priority."""
+    if step <= 0 or not sys.platform.startswith("linux"):
+        return
+    tid = threading.get_native_id()
+    try:
+        os.setpriority(os.PRIO_PROCESS, tid, min(19, os.getpriority(os.PRIO_PROCESS, tid) + step))
+    except OSError:
+        pass
 
 
 class Runner:
     """Owns the worker thread of one chart."""
 
-    def __init__(self, fps: float = 30.0):
+    def __init__(self, fps: float = 30.0, nice: int = BACKGROUND_NICE):
         self.min_interval = 1.0 / fps
+        self.nice = nice
         self._thread: threading.Thread | None = None
         self._cancel = threading.Event()
         self._ended = threading.Event()   # set when the current run's thread has finished
@@ -77,6 +99,7 @@ class Runner:
                 held[0] = frame
 
         def work():
+            lower_priority(self.nice)
             try:
                 result = job(on_frame=throttled, cancel=cancel.is_set)
             except BaseException as exc:  # reported to the widget and kept for wait()

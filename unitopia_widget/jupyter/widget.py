@@ -300,9 +300,9 @@ class UnitoPia(anywidget.AnyWidget):
     def _job(self, on_frame, cancel):
         def progress(i, loss, stats):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss}
-        try:
+        try:   # every iteration offers its frame: the runner sends at most its fps a second
             return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
-                                      abort=cancel, fresh=self._fresh)
+                                      abort=cancel, fresh=self._fresh, frame_every=1)
         except Cancelled:   # stopped before its first step: nothing to keep
             return None
 

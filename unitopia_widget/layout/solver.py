@@ -9,7 +9,7 @@ counts the iterations each phase and rule acted on.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
 Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
-``on_frame`` every ``frame_every`` iterations; ``cancel()`` returning True
+``on_frame`` at the start, every ``frame_every`` iterations and at the end; ``cancel()`` returning True
 stops the run between iterations and keeps the current transforms.
 """
 from __future__ import annotations
@@ -138,6 +138,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
               polish_left=p.polish_iterations, room=np.zeros(ctl.count, dtype=bool))
     if s.stage.max() > 0:
         place.hold(s.stage > s.poured)
+    if on_frame is not None:   # the start: a live view shows the marks before the first steps
+        on_frame(_frame(place, ctl.unit_scale()))
     cancelled = False
     while not s.done:
         if cancel is not None and cancel():

@@ -495,6 +495,12 @@ function decodeUint8(value) {
   if (!b || !b.length) return null;
   return new Uint8Array(b.buffer, b.offset, b.length);
 }
+function sameFrame(a, b) {
+  if (!a || !b) return a === b;
+  if (a.length !== b.length) return false;
+  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
+  return true;
+}
 function angleDelta(a, b) {
   return ((b - a) % 360 + 540) % 360 - 180;
 }
@@ -1171,11 +1177,13 @@ function segment(ctx, a, b) {
 
 // src/draw-marks.js
 var RAD = Math.PI / 180;
-function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
-  const n = Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4;
+function markCount({ units, frame }) {
+  return Math.floor(Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4);
+}
+function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
   let maxSide = 0;
   let upright = false;
-  for (let i = 0; i < n; i++) {
+  for (let i = from; i < until; i++) {
     const s = frame[4 * i + 3];
     const w = units[4 * i + 2] * s;
     const h2 = units[4 * i + 3] * s;
@@ -1208,9 +1216,13 @@ function drawMarks(ctx, k, { units, frame, colors, bitmaps, selected }) {
       ctx.fill();
     }
   }
-  if (selected && selected.size) outlineSelected(ctx, k, units, frame, n, selected);
   ctx.setTransform(1, 0, 0, 1, 0, 0);
-  return maxSide * k;
+  return { maxSide };
+}
+function drawSelection(ctx, k, state) {
+  const { units, frame, selected } = state;
+  if (selected && selected.size) outlineSelected(ctx, k, units, frame, markCount(state), selected);
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
 }
 function outlineSelected(ctx, k, units, frame, n, selected) {
   for (const i of selected) {
@@ -1234,6 +1246,79 @@ function rgba(colors, i) {
   if (!colors || colors.length < 4 * i + 4) return "rgba(120, 120, 120, 0.8)";
   return `rgba(${colors[4 * i]}, ${colors[4 * i + 1]}, ${colors[4 * i + 2]}, ${colors[4 * i + 3] / 255})`;
 }
+
+// src/marks-painter.js
+var SLICE_MS = 8;
+var BACK_OPTIONS = { willReadFrequently: true };
+var FIRST_SLICE = 512;
+var MarksPainter = class {
+  /**
+   * target: the visible canvas; makeCanvas(): a new canvas for the back buffer;
+   * now(): a clock in ms (performance.now by default).
+   */
+  constructor(target, { makeCanvas = () => document.createElement("canvas"), now = () => performance.now(), sliceMs = SLICE_MS, firstSlice = FIRST_SLICE } = {}) {
+    this.target = target;
+    this.back = null;
+    this.makeCanvas = makeCanvas;
+    this.now = now;
+    this.sliceMs = sliceMs;
+    this.perSlice = firstSlice;
+    this.frame = new Float32Array(0);
+    this.state = null;
+    this.next = 0;
+    this.maxSide = 0;
+    this.busy = false;
+    this.px = 0;
+  }
+  /** Starts painting `state` ({units, frame, colors, bitmaps, selected}) at zoom k. */
+  start(k, state) {
+    const n = 4 * markCount(state);
+    if (this.frame.length !== n) this.frame = new Float32Array(n);
+    if (n) this.frame.set(state.frame.subarray(0, n));
+    this.state = { ...state, frame: this.frame };
+    this.k = k;
+    if (!this.back) this.back = this.makeCanvas();
+    if (this.back.width !== this.target.width || this.back.height !== this.target.height) {
+      this.back.width = this.target.width;
+      this.back.height = this.target.height;
+    }
+    const ctx = this.back.getContext("2d", BACK_OPTIONS);
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, this.back.width, this.back.height);
+    this.next = 0;
+    this.maxSide = 0;
+    this.busy = true;
+  }
+  /** Drops an unfinished paint (the canvas was resized: it would show at the old size). */
+  cancel() {
+    this.busy = false;
+  }
+  /** Draws one slice; returns true when this step finished the paint and showed it. */
+  step() {
+    if (!this.busy) return false;
+    const n = markCount(this.state);
+    const back = this.back.getContext("2d", BACK_OPTIONS);
+    const t0 = this.now();
+    const until = Math.min(n, this.next + this.perSlice);
+    const done = drawRange(back, this.k, this.state, this.next, until);
+    back.getImageData(0, 0, 1, 1);
+    const ms = Math.max(1e-3, this.now() - t0);
+    if (until > this.next) this.perSlice = Math.max(16, Math.floor(this.sliceMs * (until - this.next) / ms));
+    this.next = until;
+    this.maxSide = Math.max(this.maxSide, done.maxSide);
+    if (this.next < n) return false;
+    const ctx = this.target.getContext("2d");
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.globalAlpha = 1;
+    ctx.globalCompositeOperation = "source-over";
+    ctx.clearRect(0, 0, this.target.width, this.target.height);
+    ctx.drawImage(this.back, 0, 0);
+    drawSelection(ctx, this.k, this.state);
+    this.px = this.maxSide * this.k;
+    this.busy = false;
+    return true;
+  }
+};
 
 // src/tools/stroke.js
 var Stroke = class {
@@ -2740,6 +2825,8 @@ function renderView({ model, el, signal }) {
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
   let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = /* @__PURE__ */ new Set();
+  const painter = new MarksPainter(stage.canvases.marks);
+  let marksPending = false;
   let raf = 0;
   const view = {
     model,
@@ -2824,6 +2911,7 @@ function renderView({ model, el, signal }) {
     const design = view.design();
     if (stage.layout(design.canvas)) {
       ["scene", "over", "marks"].forEach((w) => dirty.add(w));
+      painter.cancel();
       legend.place();
     }
     if (interp.step(now)) dirty.add("marks");
@@ -2834,15 +2922,21 @@ function renderView({ model, el, signal }) {
       const guides = guidesVisible({ tool: s.tool, hasFrame: view.hasFrame(), shown: toggles.guidesShown() });
       drawOverlay(stage.begin("over"), { design, current: view.layer(), picked: s.picked, unit, tool: tools[s.tool], guides, pins: { list: pinned, frame: interp.to } });
     }
-    if (dirty.has("marks")) {
+    if (dirty.has("marks")) marksPending = true;
+    if (marksPending && !painter.busy) {
+      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
+      marksPending = false;
+    }
+    if (painter.busy) {
       const t0 = performance.now();
-      const px = drawMarks(stage.begin("marks"), stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
-      bitmaps.need(px);
-      stats.paints++;
+      if (painter.step()) {
+        bitmaps.need(painter.px);
+        stats.paints++;
+      }
       stats.paintMs += performance.now() - t0;
     }
     dirty.clear();
-    if (!interp.settled || replay.playing()) raf = requestAnimationFrame(paint);
+    if (!interp.settled || painter.busy || marksPending || replay.playing()) raf = requestAnimationFrame(paint);
   }
   function onDesign() {
     const design = readDesign(model);
@@ -2864,6 +2958,7 @@ function renderView({ model, el, signal }) {
   function onFrame() {
     const frame = decodeFloat32(model.get("frame"));
     stats.framesReceived++;
+    if (interp.to && sameFrame(frame, interp.to)) return;
     const had = view.hasFrame();
     interp.push(frame, performance.now());
     if (model.get("status") === "running") replay.record(frame);
