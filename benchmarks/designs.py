@@ -3,8 +3,8 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
-margins, tall thin marks, blocked layers and emitters (a stack whose layers
-shrink 4x), turning rectangles, line-drawn sketches, hollow rings and a
+margins (a page of drops turned to its centre), tall thin marks, blocked layers and
+emitters (a stack whose layers shrink 4x; nine layers three to a bowl), turning rectangles, line-drawn sketches, hollow rings and a
 container PNG with faint alpha pixels (assets made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
@@ -231,12 +231,40 @@ def design_faint_png():
                 boundary="closed"), [drawn]
 
 
+def bowl(cx: float, half: float = 115, rim: float = 150, floor: float = 560) -> uw.Container:
+    """A bowl: the lower half of an ellipse of half width ``half``, open at its rim (px)."""
+    t = np.linspace(0, math.pi, 33)
+    return uw.Container.polygon(np.c_[cx + half * np.cos(t), rim + (floor - rim) * np.sin(t)])
+
+
+def design_bowls():
+    """Nine layers stacked three to a bowl in three bowls, each blocked on the one below it
+    in its bowl, under a downward force; sizes spread 10x."""
+    k = np.repeat(np.arange(9), 20)
+    df = pd.DataFrame({"layer": k, "v": lognormal(180, 10, 18)})
+    bowls = [bowl(cx) for cx in (140, 400, 660)]
+    w = uw.UnitoPia(df, mark="circle", size="v", by="layer", canvas=(W, H), seed=0,
+                    forces=[uw.DirectionalForce(90)], boundary="open")
+    for j in range(9):
+        w.layer(str(j)).set(container=bowls[j // 3], blocks=[str(j - 1)] if j % 3 else [])
+    return w, bowls
+
+
+def design_page():
+    """A closed page with a margin of 0.4 and drops turned to its centre."""
+    df = pd.DataFrame({"mm": lognormal(80, 30, 19)})
+    c = uw.Container.rect(60, 40, 680, 520)
+    return dict(df=df, mark=icon("raindrop"), size="mm", margin=0.4, orientation="to_center",
+                container=c, boundary="closed"), [c]
+
+
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,
-           "strata": design_strata, "pareto": design_pareto}
+           "strata": design_strata, "pareto": design_pareto, "bowls": design_bowls,
+           "page": design_page}
 
 
 def build(name):
