@@ -4,9 +4,10 @@ Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
 margins (a page of drops turned to its centre), seven kinds of snowflakes around
-lettering, tall thin marks, blocked layers and
-emitters (a stack whose layers shrink 4x; nine layers three to a bowl), turning rectangles, line-drawn sketches, hollow rings and a
-container PNG with faint alpha pixels (assets made in code). Each
+lettering, tall thin marks, blocked layers and emitters (a stack whose layers
+shrink 4x; nine layers three to a bowl), turning rectangles, line-drawn
+sketches, hollow rings and a container PNG with faint alpha pixels (assets
+made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
