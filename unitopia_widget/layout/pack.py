@@ -102,7 +102,8 @@ class Packing:
         centers, fitted = np.zeros((len(radii), 2)), True
         dead, smallest = 0, float(radii.min())
         seq = np.lexsort((ranks, -radii)) if largest_first else np.argsort(ranks, kind="stable")
-        rest = np.maximum.accumulate(np.asarray(radii, float)[seq][::-1])[::-1]   # (n,) from each on
+        # (n,) the largest disc from each one on, in placing order
+        rest = np.maximum.accumulate(np.asarray(radii, float)[seq][::-1])[::-1]
         reach = np.maximum(np.append(rest[1:], 0.0), self.reach if later is None else later)
         for i, ahead in zip(seq, reach):
             r = float(radii[i])

@@ -133,7 +133,8 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                 pack = packings[key]
                 ranks = emission_ranks(units.order[units.layer == i])
                 cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
-                if not pack.place(r, cost, ranks, later=_later(units, layers, members, i, radius) * scale)[1]:
+                later = _later(units, layers, members, i, radius) * scale
+                if not pack.place(r, cost, ranks, later=later)[1]:
                     return False
             return True
 
