@@ -3,9 +3,11 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
-margins, tall thin marks (data-true and on a ``height_range``), blocked layers and emitters (a stack whose layers
-shrink 4x), turning rectangles, line-drawn sketches, hollow rings and a
-container PNG with faint alpha pixels (assets made in code). Each
+margins (a page of drops turned to its centre), seven kinds of snowflakes around
+lettering, tall thin marks (data-true and on a ``height_range``), blocked layers and emitters (a stack whose layers
+shrink 4x; nine layers three to a bowl), turning rectangles, line-drawn
+sketches, hollow rings and a container PNG with faint alpha pixels (assets
+made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
@@ -257,6 +259,75 @@ def design_faint_png():
                 boundary="closed"), [drawn]
 
 
+def bowl(cx: float, half: float = 115, rim: float = 150, floor: float = 560) -> uw.Container:
+    """A bowl: the lower half of an ellipse of half width ``half``, open at its rim (px)."""
+    t = np.linspace(0, math.pi, 33)
+    return uw.Container.polygon(np.c_[cx + half * np.cos(t), rim + (floor - rim) * np.sin(t)])
+
+
+def design_bowls():
+    """Nine layers stacked three to a bowl in three bowls, each blocked on the one below it
+    in its bowl, under a downward force; sizes spread 10x."""
+    k = np.repeat(np.arange(9), 20)
+    df = pd.DataFrame({"layer": k, "v": lognormal(180, 10, 18)})
+    bowls = [bowl(cx) for cx in (140, 400, 660)]
+    w = uw.UnitoPia(df, mark="circle", size="v", by="layer", canvas=(W, H), seed=0,
+                    forces=[uw.DirectionalForce(90)], boundary="open")
+    for j in range(9):
+        w.layer(str(j)).set(container=bowls[j // 3], blocks=[str(j - 1)] if j % 3 else [])
+    return w, bowls
+
+
+def design_page():
+    """A closed page with a margin of 0.4 and drops turned to its centre."""
+    df = pd.DataFrame({"mm": lognormal(80, 30, 19)})
+    c = uw.Container.rect(60, 40, 680, 520)
+    return dict(df=df, mark=icon("raindrop"), size="mm", margin=0.4, orientation="to_center",
+                container=c, boundary="closed"), [c]
+
+
+def flake(arms: int, branch: float, width: float, colour: str) -> uw.Mark:
+    """A line-drawn snowflake: ``arms`` spokes, each with a pair of side branches at
+    ``branch`` (share of the spoke), strokes ``width`` wide (viewBox units of 100)."""
+    lines = []
+    for a in np.linspace(0, 2 * math.pi, arms, endpoint=False) - math.pi / 2:
+        u = np.array([math.cos(a), math.sin(a)])
+        lines.append((50, 50, *(50 + 44 * u)))
+        b = 50 + 44 * branch * u
+        for turn in (0.6, -0.6):
+            v = np.array([math.cos(a + turn), math.sin(a + turn)])
+            lines.append((*b, *(b + 16 * v)))
+    body = "".join(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}"/>'
+                   for x1, y1, x2, y2 in lines)
+    return uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+                       f'<g stroke="{colour}" stroke-width="{width}" stroke-linecap="round">'
+                       f'{body}</g></svg>')
+
+
+def lettering() -> uw.Container:
+    """A page around the block letters LIFE: each letter a hole made of rectangles that
+    meet edge to edge (none overlap, so the holes stay holes)."""
+    def box(x, y, w, h):
+        return ring_path([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
+    holes = [box(120, 200, 40, 200), box(160, 360, 80, 40),                        # L
+             box(290, 200, 40, 200),                                               # I
+             box(380, 200, 40, 200), box(420, 200, 90, 40), box(420, 280, 70, 40),  # F
+             box(560, 200, 40, 200), box(600, 200, 90, 40), box(600, 280, 70, 40),
+             box(600, 360, 90, 40)]                                                # E
+    return uw.Container.path(box(40, 60, 720, 480) + " " + " ".join(holes))
+
+
+def design_lettering():
+    """Seven kinds of snowflakes in the region around lettering, closed, margin 0.1."""
+    kinds = [flake(a, b, w, c) for a, b, w, c in (
+        (6, 0.55, 6, "#4e79a7"), (6, 0.35, 8, "#76b7b2"), (8, 0.5, 5, "#59a14f"),
+        (5, 0.6, 7, "#9c755f"), (6, 0.75, 5, "#af7aa1"), (12, 0.6, 4, "#4e79a7"),
+        (7, 0.45, 6, "#76b7b2"))]
+    df = pd.DataFrame({"v": lognormal(140, 20, 20)})
+    c = lettering()
+    return dict(df=df, mark=kinds, size="v", margin=0.1, container=c, boundary="closed"), [c]
+
+
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "strands": design_strands, "strands-range": lambda: design_strands((20, 80)),
@@ -264,7 +335,8 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,
            "strata": design_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
-           "waffle": design_waffle}
+           "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
+           "lettering": design_lettering}
 
 
 def build(name):

@@ -82,6 +82,38 @@ def test_snap_rho_fits_marks_just_over_a_patch_step_into_it():
     assert 16 in PATCH_SIDES and 20 in PATCH_SIDES
 
 
+def test_dust_marks_do_not_set_the_raster_resolution():
+    # a heavy tail: 20 visible marks and 200 drawn under 2 px across; aimed at the mean of
+    # all, the raster was the finest allowed (rho 4 here), 30x the pixels of one aimed at
+    # the visible marks
+    from unitopia_widget.layout import engine
+    c = chart(220, boundary="open", fill=0.3, values=np.r_[np.ones(20), np.full(200, 1e-5)])
+    problem = engine.build_problem(engine.bind(c.df, c.layers), c.layers, c.canvas, 0, "cpu",
+                                   max_iterations=1)
+    assert problem.grid.rho < 4.0 / 4, problem.grid.rho
+
+
+def test_packing_keeps_clearances_exact_only_as_far_as_they_matter():
+    # one huge disc among small ones: each disc updates the clearances up to the largest disc
+    # still to place (here and ``later``), not the huge one's radius; the same spots result
+    from unitopia_widget.layout.pack import Packing
+    yy, xx = np.mgrid[:200, :300]
+    region = Region((((xx - 150) / 140) ** 2 + ((yy - 100) / 90) ** 2 <= 1).astype(float), 1.0)
+    radii = np.r_[60.0, np.random.default_rng(0).uniform(1, 4, 60)]
+    ranks, out = np.arange(len(radii)), []
+    for later in (None, 3.0):
+        pack = Packing(region, 1.0, float(radii.max()))
+        centers = pack.place(radii, pack.depth.copy() * -1, ranks, later=later)[0]
+        gap = np.hypot(*(pack.points[:, None] - centers[None]).T).T - radii
+        exact = np.minimum(pack.depth, gap.min(1))
+        out.append((centers, pack.clear, exact))
+    np.testing.assert_array_equal(out[0][0], out[1][0])
+    np.testing.assert_allclose(out[0][1], out[0][2], atol=1e-9)
+    near = out[1][2] < 3.0            # exact up to ``later``; the rest at least that
+    np.testing.assert_allclose(out[1][1][near], out[1][2][near], atol=1e-9)
+    assert (out[1][1][~near] >= 3.0 - 1e-9).all()
+
+
 def test_closed_start_lattice_is_the_loosest_that_holds_the_marks():
     # an off-centre ellipse (no symmetric jumps in the count); 3% steps overshot by 1-5%
     # (152, 314, 793), leaving a rim of empty container the scale then grew into slowly

@@ -22,7 +22,8 @@ import torch
 from . import arrange, positions
 from .atlas import SpriteAtlas
 from ..design.encodings import (Encoded, check_column, continuous_values, encode, footprint,
-                                linear_extent, is_continuous, missing_warning, palette_for, unhashable)
+                                linear_extent, is_continuous, missing_warning, palette_for,
+                                unhashable, MIN_DRAWN)
 from ..design.groups import mark_choice
 from .losses import CanvasTerms, sweep_of
 from .placement import Placement
@@ -259,7 +260,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     _check(abort)
     band = footprint(units.margin)
     foot = np.hypot(units.half_w, units.half_h) * band * unit_scale
-    r_mean = float(np.mean(foot))
+    # marks drawn under MIN_DRAWN px across (a heavy tail's dust, warned about) do not set the
+    # raster resolution: aiming it at them would make the raster, and every pass, many times larger
+    seen = 2 * np.minimum(units.half_w, units.half_h) * unit_scale >= MIN_DRAWN
+    r_mean = float(np.mean(foot[seen] if seen.any() else foot))
     w, h = canvas
     rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
     half = np.stack([units.half_w, units.half_h]) * band * unit_scale

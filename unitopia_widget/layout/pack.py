@@ -82,13 +82,17 @@ class Packing:
             np.minimum(self.clear, np.hypot(*(rel - along * d).T) - r, out=self.clear)
 
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
-              largest_first: bool = True, roomiest: bool = False):
+              largest_first: bool = True, roomiest: bool = False, later: float | None = None):
         """Centres ``(n, 2)`` for discs ``radii (n,)``, each at the cheapest spot that holds
         it (``cost (M,)`` per spot, as ordered by ``self.points``), else at the roomiest
         spot; and whether all fitted. ``largest_first``: by decreasing size (``ranks`` break
         ties), else in ``ranks`` order. ``roomiest``: every disc, of those that hold it, at the
         spot farthest from the discs placed (the edge counting as a mirror: twice its
-        distance), which spreads marks too few to fill a container evenly over it."""
+        distance), which spreads marks too few to fill a container evenly over it.
+        ``later``: the largest disc radius later calls place here (default ``self.reach``).
+        Each disc lowers the clearances only as far as they matter: up to the largest disc
+        still to place, of this call's and ``later`` (one huge mark of a heavy tail would
+        otherwise make every small disc's update span the whole container)."""
         if self.tree is None:
             raise ValueError("container: no spot inside it to place marks on")
         by_cost = np.argsort(cost, kind="stable")
@@ -97,7 +101,11 @@ class Packing:
         tree = cKDTree(points)
         centers, fitted = np.zeros((len(radii), 2)), True
         dead, smallest = 0, float(radii.min())
-        for i in np.lexsort((ranks, -radii)) if largest_first else np.argsort(ranks, kind="stable"):
+        seq = np.lexsort((ranks, -radii)) if largest_first else np.argsort(ranks, kind="stable")
+        # (n,) the largest disc from each one on, in placing order
+        rest = np.maximum.accumulate(np.asarray(radii, float)[seq][::-1])[::-1]
+        reach = np.maximum(np.append(rest[1:], 0.0), self.reach if later is None else later)
+        for i, ahead in zip(seq, reach):
             r = float(radii[i])
             dead = _first(clear, smallest, dead, len(clear))   # spots too tight for any mark left
             if roomiest:
@@ -110,7 +118,7 @@ class Packing:
             centers[i] = points[k]
             if roomiest:
                 np.minimum(room, np.hypot(*(points - points[k]).T) - r, out=room)
-            near = np.asarray(tree.query_ball_point(points[k], r + self.reach), dtype=np.int64)
+            near = np.asarray(tree.query_ball_point(points[k], r + ahead), dtype=np.int64)
             clear[near] = np.minimum(clear[near], np.hypot(*(points[near] - points[k]).T) - r)
         self.clear[by_cost] = clear
         return centers, fitted

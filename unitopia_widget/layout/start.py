@@ -84,7 +84,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                     packings[key].stamp_swept(*_swept(s.center, radius, units.layer, below,
                                                       sweep_of(layer.forces)))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
-                                       packings, key, float(radius.max()), canvas)
+                                       packings, key, float(radius.max()), canvas,
+                                       _later(units, layers, order, i, radius))
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
         if key in packings and emitter is not None:   # emitted marks take room from packed ones
@@ -132,7 +133,8 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                 pack = packings[key]
                 ranks = emission_ranks(units.order[units.layer == i])
                 cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
-                if not pack.place(r, cost, ranks)[1]:
+                later = _later(units, layers, members, i, radius) * scale
+                if not pack.place(r, cost, ranks, later=later)[1]:
                     return False
             return True
 
@@ -149,10 +151,18 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
     return out
 
 
-def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas):
+def _later(units, layers, order, i, radius) -> float:
+    """The largest footprint radius (``radius (N,)``) of the layers after ``i`` in ``order``
+    that share its container: how far a packing's clearances must stay exact for them."""
+    key = repr(layers[i].region.to_json())
+    after = [j for j in order[order.index(i) + 1:] if repr(layers[j].region.to_json()) == key]
+    return float(radius[np.isin(units.layer, after)].max()) if after else 0.0
+
+
+def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas, later):
     """Starting centres ``(n, 2)`` of a layer without an emitter: thin turnable marks in rows
     along the container, spread sizes packed by size (one packing per container, shared by
-    the layers in it), else lattice spots ranked by the forces."""
+    the layers in it), else lattice spots ranked by the forces. ``later``: see ``_later``."""
     container = layer.region
     if _lengthwise(layer, units, idx) and key not in packings:
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
@@ -169,7 +179,7 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         fill = layer.boundary == "closed" and layer.fill is None
         # too few to fill it (a shared scale held by a fuller container): spread over it
         sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
-        return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse)[0]
+        return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse, later=later)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 

@@ -120,7 +120,7 @@ def _drawing(chart, units, legend, title, caption, outline, axes) -> tuple:
         raise TypeError(f"outline must be True or False, got {outline!r:.40}")
     if not isinstance(axes, bool):
         raise TypeError(f"axes must be True or False, got {axes!r:.40}")
-    drawn = chart.result.axes if chart.result is not None else []
+    drawn = chart.result.axes if axes and chart.result is not None else []
     if axes and not drawn:
         raise ValueError("axes=True draws the axes of x= and y=, but the layout binds neither; "
                          "bind a layer's x= or y= to a column and run the layout again")
