@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import os
 import warnings
-from numbers import Integral
 
 import numpy as np
 import pandas as pd
@@ -21,21 +20,20 @@ from .design.encodings import (NUMERIC_CHANNELS, invalid_rows, titles as row_tit
 from .output import animation, html
 from .output.files import atomic_write
 from .output.publish import PageOptions, export_png, export_svg
-from .io.images import image_data_url, load_image
 from .hand import HandControl
-from .design.scene import (MAX_MARKS, SCHEMA, VERSION, Layer, _mark, _mark_set, block_order,
-                    check_design_header, is_category_dict)
+from .design.scene import SCHEMA, VERSION, Layer, block_order, check_design_header
 from .design.files import design_code, load_design
 from .design.positions import POSITION_CHANNELS, invalid_position_rows
+from .design.arguments import (check_canvas, check_scales, check_seed, parse_marks, pick_mark,
+                               read_background, rows_of)
 from .design.upgrade import upgrade
-from .design.validate import check_finite, closest
+from .design.validate import closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint", "canvas",
              "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
              "legend", "tooltip", "size_range", "width_range", "height_range", "x", "y",
              "x_scale", "y_scale", "arrange")
-SCALES = ("shared", "independent")
 MAX_UNITS = 20_000
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
@@ -69,10 +67,10 @@ class Chart(HandControl):
         if not df.index.is_unique:
             raise ValueError("df has duplicate index labels; call df.reset_index(drop=True) first")
         opts = dict(kwargs)
-        self.canvas = _canvas(opts.pop("canvas", (800, 500)))
-        self.background = _background(opts.pop("background", None))
-        self.seed = _seed(opts.pop("seed", 0))
-        self.scales = _scales(opts.pop("scales", "shared"))
+        self.canvas = check_canvas(opts.pop("canvas", (800, 500)))
+        self.background = read_background(opts.pop("background", None))
+        self.seed = check_seed(opts.pop("seed", 0))
+        self.scales = check_scales(opts.pop("scales", "shared"))
         self.page = PageOptions(opts.pop("title", None), opts.pop("caption", None),
                                 True if opts.get("legend") is None else opts["legend"])
         opts.pop("legend", None)
@@ -80,7 +78,7 @@ class Chart(HandControl):
         tooltip_fields(df, self._tooltip)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
-        mark = _parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
+        mark = parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
         shape = opts.get("shape")
         categories = {c: v for c, v in (("by", by), ("shape", shape)) if v is not None}
         missing_by = np.zeros(len(df), bool)
@@ -111,7 +109,7 @@ class Chart(HandControl):
         self.frames = None   # (F, N, 4) the last run's frames, ending on its layout
         self._units = None
         if by is None:
-            self.add_layer("layer-1", mark=_pick_mark(mark, None, shape), **opts)
+            self.add_layer("layer-1", mark=pick_mark(mark, None, shape), **opts)
         else:
             try:
                 values = pd.unique(df[by])
@@ -127,7 +125,7 @@ class Chart(HandControl):
             except TypeError:
                 pass
             for v in values:
-                self.add_layer(str(v), mark=_pick_mark(mark, v, shape), rows=_rows_of(df, by, v),
+                self.add_layer(str(v), mark=pick_mark(mark, v, shape), rows=rows_of(df, by, v),
                                **opts)
         self.bind_check()
 
@@ -404,15 +402,15 @@ class Chart(HandControl):
         """Replace the design by ``d``, all or nothing: a bad design changes nothing."""
         check_design_header(d)
         d = upgrade(d)
-        canvas = _canvas(d.get("canvas", self.canvas))
-        seed = _seed(d.get("seed", self.seed))
-        scales = _scales(d.get("scales", "shared"), "design: scales")
+        canvas = check_canvas(d.get("canvas", self.canvas))
+        seed = check_seed(d.get("seed", self.seed))
+        scales = check_scales(d.get("scales", "shared"), "design: scales")
         background = d.get("background")
         if background and not (isinstance(background, dict) and isinstance(background.get("image"), str)
                                and background["image"].lstrip()[:5].lower() == "data:"):
             raise ValueError(f"design: background must be null or {{\"image\": \"data:image/png;"
                              f"base64,...\"}}; got {background!r:.60}")
-        background = _background(background["image"]) if background else None
+        background = read_background(background["image"]) if background else None
         try:
             page = PageOptions.from_json(d)
         except (ValueError, TypeError) as exc:
@@ -442,72 +440,3 @@ class Chart(HandControl):
         self.page, self.scales = page, scales
         self._units = units
         self._changed()
-
-
-def _rows_of(df: pd.DataFrame, by, value) -> dict:
-    """The rows spec of the layer of ``df[by] == value``, JSON-safe for the design file:
-    the value as a plain str/int/float/bool when that selects the same rows, else the index."""
-    mask = (df[by] == value).to_numpy()
-    plain = value.item() if isinstance(value, np.generic) else value
-    if isinstance(plain, (str, int, float, bool)) and np.array_equal((df[by] == plain).to_numpy(), mask):
-        return {"column": by, "value": plain}
-    return {"index": df.index[mask].tolist()}
-
-
-def _scales(value, what: str = "scales") -> str:
-    """``"shared"`` or ``"independent"``, else a ValueError naming the value."""
-    if not isinstance(value, str) or value not in SCALES:
-        raise ValueError(f"{what} must be 'shared' (one scale: sizes comparable across layers) "
-                         f"or 'independent' (one per layer: each container fills), got {value!r}")
-    return value
-
-
-def _seed(seed) -> int:
-    if isinstance(seed, bool) or not isinstance(seed, Integral):
-        raise TypeError(f"seed must be an integer, got {seed!r:.60}")
-    if not -2 ** 63 <= seed < 2 ** 64:   # what torch.Generator.manual_seed takes
-        raise ValueError(f"seed must be an integer in [-2**63, 2**64 - 1], got {seed!r:.60}")
-    return int(seed)
-
-
-def _parse_marks(mark):
-    """``mark=`` with every spec made a Mark (the same structure: one, a list or a dict)."""
-    if is_category_dict(mark):
-        return {k: _parse_marks(v) for k, v in mark.items()}
-    if isinstance(mark, (list, tuple)):
-        if len(mark) > MAX_MARKS:
-            _mark_set(mark)   # raises: too many marks
-        return [_parse_marks(m) if isinstance(m, (list, tuple, dict)) else _mark(m) for m in mark]
-    return _mark(mark)
-
-
-def _pick_mark(mark, value, shape):
-    """The ``mark=`` of the layer for by= ``value``: with ``shape=`` every layer takes the
-    whole group; without, a ``{category: mark}`` dict picks the by= category's mark(s)."""
-    if is_category_dict(mark) and shape is None:
-        if value is None:
-            raise ValueError("mark is a dict of category -> mark, which needs shape=<column> "
-                             "(each row draws the mark of its category) or by=<column>")
-        if value not in mark and str(value) not in mark:
-            raise ValueError(f"mark: no mark for category {value!r}; the dict has "
-                             f"{list(mark)}")
-        return mark[value] if value in mark else mark[str(value)]
-    return mark
-
-
-def _canvas(canvas) -> tuple[float, float]:
-    if not hasattr(canvas, "__len__") or len(canvas) != 2:
-        raise ValueError(f"canvas must be (width, height) in pixels, got {canvas!r}")
-    w, h = (check_finite("canvas", n, v) for n, v in zip(("width", "height"), canvas))
-    if not (16 <= w <= 10_000 and 16 <= h <= 10_000):
-        raise ValueError(f"canvas must be between 16 and 10000 pixels a side, got {canvas!r}")
-    return (w, h)
-
-
-def _background(source):
-    if source is None:
-        return None
-    try:
-        return image_data_url(load_image(source))
-    except ValueError as exc:
-        raise ValueError(f"background: {exc}") from None

@@ -11,6 +11,9 @@ import json
 import os
 import pathlib
 
+import pandas as pd
+
+from ..design.files import design_code, load_design
 from ..output.files import atomic_write
 
 SUFFIX = ".unitopia.json"
@@ -49,3 +52,43 @@ def write(path, design: dict) -> pathlib.Path:
     path = pathlib.Path(path)
     atomic_write(os.fspath(path), json.dumps(design, indent=1).encode())
     return path
+
+
+class KeptDesign:
+    """``UnitoPia``'s design files: ``load``, ``from_design``, ``save_design``,
+    ``design_path`` and ``to_code``; needs ``_chart`` and ``_design_path``."""
+
+    @classmethod
+    def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
+        """A widget for ``df`` with the design saved at ``path``; edits are written back to
+        ``path`` (``design_path``; pass ``design_path=None`` to keep the file as it is), so
+        a re-executed ``w = UnitoPia.load(path, df)`` restores what was sketched."""
+        kwargs.setdefault("design_path", path)
+        return cls.from_design(df, load_design(path), **kwargs)
+
+    @property
+    def design_path(self):
+        """The design file every edit is written to (``pathlib.Path``), or None."""
+        return self._design_path
+
+    def save_design(self, path=None) -> pathlib.Path:
+        """Write the design beside the notebook (default ``<notebook-stem>.unitopia.json``) or
+        to ``path``, and keep that file current from now on (``design_path``); a re-executed
+        ``w = uw.UnitoPia.load(path, df)`` then restores it. Returns the path."""
+        self._design_path = default_path() if path is None else pathlib.Path(path)
+        return write(self._design_path, self._chart.design())
+
+    @classmethod
+    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":
+        """A widget for ``df`` with ``design`` (a design JSON dict, as ``w.design``)."""
+        kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
+        path = kwargs.pop("design_path", None)
+        w = cls(df, **kwargs)
+        w._chart.apply_design(design)
+        w._design_path = None if path is None else pathlib.Path(path)
+        return w
+
+    def to_code(self, df_name: str = "df") -> str:
+        """Python source that rebuilds the current design, sketched containers and marks
+        included (as their stroke lists and polygons), for the DataFrame named ``df_name``."""
+        return design_code(self._chart.design(), "uw.UnitoPia", df_name, var="w")

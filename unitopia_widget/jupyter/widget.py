@@ -18,9 +18,11 @@ import traitlets as t
 
 from ..design import icons
 from ..chart import ARGUMENTS, Chart, check_kwargs
-from ..design.files import design_code, load_design
+from ..design.files import load_design
 from ..design.encodings import rgba
 from . import keep
+from .keep import KeptDesign
+from .pins import Pinning
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner
@@ -39,7 +41,7 @@ class _SyncedChart(Chart):
             self.widget._push_design()
 
 
-class UnitoPia(anywidget.AnyWidget):
+class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     """A pictorial unit chart in the notebook: ``UnitoPia(df, mark="star", size="Duration")``.
 
     Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, an icon name such as
@@ -146,19 +148,6 @@ class UnitoPia(anywidget.AnyWidget):
         rows = self._chart._units.rows
         return self._chart.df.loc[[rows[i] for i in self.selected_units if 0 <= i < len(rows)]]
 
-    def pin(self, rows, x=None, y=None, angle=None) -> None:
-        """Hold ``rows`` where they are (or at ``x, y`` px, ``angle`` degrees); see ``Chart.pin``."""
-        self._chart.pin(rows, x=x, y=y, angle=angle)
-
-    def unpin(self, rows=None) -> None:
-        """Release the pins of ``rows`` (None: all)."""
-        self._chart.unpin(rows)
-
-    @property
-    def pinned(self) -> pd.DataFrame:
-        """The pins: layer, row, x, y, angle."""
-        return self._chart.pinned
-
     def set_data(self, df: pd.DataFrame) -> None:
         """Replace the rows, matched by index; the next run starts from the last layout."""
         self._chart.set_data(df)
@@ -217,41 +206,6 @@ class UnitoPia(anywidget.AnyWidget):
             self._error_from = None
             if self.status == "error":
                 self.status = "done" if self.placements is not None else "idle"
-
-    @classmethod
-    def load(cls, path, df: pd.DataFrame, **kwargs) -> "UnitoPia":
-        """A widget for ``df`` with the design saved at ``path``; edits are written back to
-        ``path`` (``design_path``; pass ``design_path=None`` to keep the file as it is), so
-        a re-executed ``w = UnitoPia.load(path, df)`` restores what was sketched."""
-        kwargs.setdefault("design_path", path)
-        return cls.from_design(df, load_design(path), **kwargs)
-
-    @property
-    def design_path(self):
-        """The design file every edit is written to (``pathlib.Path``), or None."""
-        return self._design_path
-
-    def save_design(self, path=None) -> pathlib.Path:
-        """Write the design beside the notebook (default ``<notebook-stem>.unitopia.json``) or
-        to ``path``, and keep that file current from now on (``design_path``); a re-executed
-        ``w = uw.UnitoPia.load(path, df)`` then restores it. Returns the path."""
-        self._design_path = keep.default_path() if path is None else pathlib.Path(path)
-        return keep.write(self._design_path, self._chart.design())
-
-    @classmethod
-    def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":
-        """A widget for ``df`` with ``design`` (a design JSON dict, as ``w.design``)."""
-        kwargs.setdefault("canvas", design.get("canvas", (800, 500)))
-        path = kwargs.pop("design_path", None)
-        w = cls(df, **kwargs)
-        w._chart.apply_design(design)
-        w._design_path = None if path is None else pathlib.Path(path)
-        return w
-
-    def to_code(self, df_name: str = "df") -> str:
-        """Python source that rebuilds the current design, sketched containers and marks
-        included (as their stroke lists and polygons), for the DataFrame named ``df_name``."""
-        return design_code(self._chart.design(), "uw.UnitoPia", df_name, var="w")
 
     # --- running ------------------------------------------------------------
     def run(self, wait: bool = False, fresh: bool = False):
@@ -463,22 +417,6 @@ class UnitoPia(anywidget.AnyWidget):
             except Exception as exc:
                 self._on_error(exc)
         return call
-
-    def _pin_units(self, index, x, y) -> None:
-        """The front end dropped units ``index`` (into the shown layout) at ``x, y`` px: pin them
-        there (``pinned`` and ``pinned_units`` follow)."""
-        shown = self._chart._snapshot
-        count = 0 if shown is None else len(shown)
-        if not (isinstance(index, list) and isinstance(x, list) and isinstance(y, list)
-                and len(index) == len(x) == len(y)
-                and all(isinstance(i, int) and 0 <= i < count for i in index)):
-            raise ValueError(f"pin message: units, x and y must be lists of equal length with "
-                             f"unit indices under {count} (the units laid out), got {index!r:.60}")
-        self._chart.pin_units([(shown["layer"].iloc[i], shown["row"].iloc[i]) for i in index], x, y)
-        frame = np.frombuffer(self.frame, dtype=np.float32).reshape(-1, 4).copy()
-        if len(frame) == count:   # the dropped marks are shown where they are pinned
-            frame[index, 0], frame[index, 1] = x, y
-            self.frame = frame.tobytes()
 
     def _icons(self, query) -> None:
         """Reply to the mark panel's icon search with up to 30 closest icon names."""
