@@ -59,6 +59,20 @@ SCRIPT = """
 """
 
 
+def script_json(data) -> str:
+    """``data`` as JSON that a ``<script>`` element holds whole: no ``<``, ``>`` or ``&``."""
+    text = json.dumps(data, separators=(",", ":"))
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def content_policy(script: str) -> str:
+    """The page's Content-Security-Policy: nothing from the network, only ``script`` (by
+    its hash) runs, inline styles and data: images and fonts."""
+    digest = base64.b64encode(hashlib.sha256(script.encode()).digest()).decode()
+    return (f"default-src 'none'; script-src 'sha256-{digest}'; style-src 'unsafe-inline'; "
+            f"img-src data:; font-src data:")
+
+
 def replay(chart, count: int = REPLAY_FRAMES) -> dict:
     """``{"frames": [[x, y, angle, sx, sy per unit]...], "box": [bw, bh per unit]}``."""
     units, table = chart._placed, chart.placements
@@ -74,11 +88,8 @@ def replay(chart, count: int = REPLAY_FRAMES) -> dict:
 
 def page(svg: str, title: str | None, frames: dict, fps: float = 20.0) -> str:
     """The HTML text of the page holding ``svg`` (the sanitised export) and ``frames``."""
-    data = json.dumps({"svg": svg, "fps": fps, **frames}, separators=(",", ":"))
-    data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
-    digest = base64.b64encode(hashlib.sha256(SCRIPT.encode()).digest()).decode()
-    policy = (f"default-src 'none'; script-src 'sha256-{digest}'; style-src 'unsafe-inline'; "
-              f"img-src data:; font-src data:")
+    data = script_json({"svg": svg, "fps": fps, **frames})
+    policy = content_policy(SCRIPT)
     return (f'<!DOCTYPE html>\n<html><head><meta charset="utf-8">'
             f'<meta http-equiv="Content-Security-Policy" content="{policy}">'
             f'<title>{escape(title or "Unit chart")}</title>'

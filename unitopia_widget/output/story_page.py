@@ -9,11 +9,10 @@ bundled from ``js/src/story-page.js`` (``static/story-page.js``).
 """
 from __future__ import annotations
 
-import base64
-import hashlib
-import json
 import pathlib
 from xml.sax.saxutils import escape
+
+from .html import content_policy, script_json
 
 SCRIPT = pathlib.Path(__file__).parent.parent / "static" / "story-page.js"
 STYLE = ("body{font-family:system-ui,sans-serif;margin:0;padding:16px;color:#222;background:#fff}"
@@ -31,11 +30,8 @@ def page(data: dict, title: str | None) -> str:
     script = SCRIPT.read_text(encoding="utf-8")
     if "</script" in script.lower():
         raise RuntimeError(f"{SCRIPT} holds '</script', which would end the page's script early")
-    text = json.dumps(data, separators=(",", ":"))
-    text = text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
-    digest = base64.b64encode(hashlib.sha256(script.encode()).digest()).decode()
-    policy = (f"default-src 'none'; script-src 'sha256-{digest}'; style-src 'unsafe-inline'; "
-              f"img-src data:; font-src data:")
+    text = script_json(data)
+    policy = content_policy(script)
     return (f'<!DOCTYPE html>\n<html><head><meta charset="utf-8">'
             f'<meta http-equiv="Content-Security-Policy" content="{policy}">'
             f'<meta name="viewport" content="width=device-width, initial-scale=1">'
