@@ -14,6 +14,7 @@ import pytest
 import unitopia_widget as uw
 from unitopia_widget.design.bezier import fit_bezier
 from unitopia_widget.layout.solver import Cancelled
+from unitopia_widget.jupyter import notebook
 from test_runner import assert_frame_is_layout, poll
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -123,7 +124,7 @@ def test_the_legend_trait_is_a_sanitised_image_updated_after_runs_and_edits(df):
     assert w.legend_image == {}
 
 
-def test_the_static_output_shows_the_chart_trusted_or_not(df):
+def test_the_static_output_shows_the_chart_trusted_or_not(df, monkeypatch):
     w = uw.UnitoPia(df, size="v", iterations=20)
     data, _ = w._repr_mimebundle_()
     assert "application/vnd.jupyter.widget-view+json" in data
@@ -149,6 +150,13 @@ def test_the_static_output_shows_the_chart_trusted_or_not(df):
     state = w.get_state()                        # what a saved notebook keeps of the widget
     assert len(state["frame"]) == 16 * len(df) and len(state["units"]) == 16 * len(df)
     assert state["marks"] and state["status"] == "done"
+
+    monkeypatch.setattr(notebook, "SVG_BYTES", len(svg) - 1)   # a chart too large to draw as SVG
+    big = w._static.bundle()
+    assert big["image/svg+xml"].startswith('<svg class="unitopia-static" ')
+    assert 'class="unit"' not in big["image/svg+xml"]
+    assert f'href="data:image/png;base64,{big["image/png"]}"' in big["image/svg+xml"]
+    monkeypatch.undo()
 
     def fails(scale):
         raise ValueError("SVG data parsing failed cause nodes limit reached")

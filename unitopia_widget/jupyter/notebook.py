@@ -21,6 +21,12 @@ shows the SVG (styles and all; it ranks before PNG), an untrusted one the PNG,
 and nbconvert's HTML the SVG inline (with its tooltips). The view's own
 ``text/plain`` (what an untrusted notebook shows for the view) names the chart
 and no run state, which it could not keep true.
+
+Why a large chart's SVG holds its PNG: a browser draws an SVG image element by element
+even when the image is hidden, and 20,000 units held the page's main thread for
+28 s after each run (and grew the notebook file by the SVG's size). Past ``SVG_BYTES``
+the ``image/svg+xml`` is the PNG inside an ``<svg>`` root (one element to draw, the
+same class for the CSS rule); the vector chart is what ``w.save("x.svg")`` writes.
 """
 from __future__ import annotations
 
@@ -32,10 +38,12 @@ from html import unescape
 from xml.sax.saxutils import escape
 
 from ..io import svgsafe
+from ..output.export import svg_size
 
 PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s), {state}"
 VIEW_PLAIN = "UnitoPia chart: {rows} rows in {layers} layer(s) (the live widget; its image follows)"
 MARK = '<svg class="unitopia-static" '   # the static image's root, found by the widget's CSS
+SVG_BYTES = 1_000_000   # a static SVG larger than this is replaced by one holding its PNG
 _REFS = re.compile(r'(\bid="|href="#|url\(#)')
 _STYLE = re.compile(r"(<style\b[^>]*>)(.*?)(</style>)", re.S)
 
@@ -91,6 +99,8 @@ class StaticDisplay:
             why = f"its PNG could not be drawn: {type(exc).__name__}: {str(exc)[:200]}"
             warnings.warn(f"the static image: {why}", RuntimeWarning, stacklevel=2)
             return {"text/plain": f"{plain}; {why}", "image/svg+xml": svg}
+        if len(svg) > SVG_BYTES:
+            svg = _picture(png, *svg_size(svg))
         return {"text/plain": plain, "image/svg+xml": svg, "image/png": png}
 
     def show(self) -> None:
@@ -111,3 +121,10 @@ def _note(text: str, width: float) -> str:
     return (f'{MARK}xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" height="32" '
             f'viewBox="0 0 {width:.0f} 32"><text x="8" y="21" font-family="sans-serif" '
             f'font-size="13">{escape(text)}</text></svg>')
+
+
+def _picture(png: str, width: float, height: float) -> str:
+    """An SVG image ``width`` x ``height`` px holding only the base64 ``png``."""
+    return (f'{MARK}xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" height="{height:.0f}" '
+            f'viewBox="0 0 {width:.0f} {height:.0f}"><image width="{width:.0f}" '
+            f'height="{height:.0f}" href="data:image/png;base64,{png}"/></svg>')
