@@ -18,7 +18,7 @@ elsewhere, not yet trusted) in its first *safe* type by rank, and sanitised HTML
 is safe and ranks first: the SVG's elements are stripped and their tooltip text
 left as a wall, and ``data:`` images are dropped. Without it, a trusted notebook
 shows the SVG (styles and all; it ranks before PNG), an untrusted one the PNG,
-and nbconvert's HTML the SVG inline (with its tooltips). The view's own
+and nbconvert's HTML the SVG as an ``<img>`` (no tooltips there). The view's own
 ``text/plain`` (what an untrusted notebook shows for the view) names the chart
 and no run state, which it could not keep true.
 
