@@ -18,7 +18,7 @@ from numbers import Real
 import numpy as np
 from PIL import Image
 
-from ..io.svgsafe import SVG_NS
+from .composite import distinct, sprites, tile
 from .export import png_array
 
 FORMATS = (".gif", ".webp", ".mp4", ".webm")
@@ -69,31 +69,6 @@ def backdrop(svg: str, scale: float = 1.0, view=None) -> Image.Image:
     return back.convert("RGB")
 
 
-def sprite(fragment: str, def_id: str, box, size) -> Image.Image:
-    """The mark ``fragment`` (its definition ``def_id``, box ``box`` w, h) drawn at
-    ``size`` px, RGBA."""
-    bw, bh = box
-    w, h = size
-    svg = (f'<svg xmlns="{SVG_NS}" xmlns:xlink="http://www.w3.org/1999/xlink" width="{w}" '
-           f'height="{h}" viewBox="0 0 {bw:.6g} {bh:.6g}" preserveAspectRatio="none">'
-           f'<defs>{fragment}</defs><use href="#{def_id}"/></svg>')
-    return Image.fromarray(png_array(svg, (w, h)), "RGBA")
-
-
-def arts(chart, table, colors) -> tuple[np.ndarray, list]:
-    """The distinct (layer, mark, colour) of a layout's units: ``(N,)`` index of each
-    unit's art, and per art ``(svg fragment of definition "m", box w, h)``."""
-    by_name = {layer.name: layer for layer in chart.layers}
-    ids, out = {}, []
-    keys = list(zip(table["layer"], table["mark"], colors))
-    for key in keys:
-        if key not in ids:
-            ids[key] = len(ids)
-            mark = by_name[key[0]].marks[key[1]]
-            out.append((mark.svg_fragment("m", key[2]), mark.box_size))
-    return np.array([ids[k] for k in keys], dtype=int), out
-
-
 class Compositor:
     """Draws units as sprites over a backdrop: each sprite resized, rotated and faded
     once per (size, angle, opacity) it is drawn at, then pasted.
@@ -125,13 +100,13 @@ class Compositor:
                                        xy[:, 1].tolist()):
             if w < 1 or h < 1 or q == 0:
                 continue
-            tile = cache.get((k, w, h, a, q))
-            if tile is None:
-                tile = self._tile(k, w, h, a, q)
+            stores = cache.get((k, w, h, a, q))
+            if stores is None:
+                stores = self._tile(k, w, h, a, q)
                 if len(cache) > 50000:
                     cache.clear()
-                cache[(k, w, h, a, q)] = tile
-            rgb, alpha, tw, th = tile
+                cache[(k, w, h, a, q)] = stores
+            rgb, alpha, tw, th = stores
             x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
             core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
         return im
@@ -139,13 +114,11 @@ class Compositor:
     def _tile(self, k: int, w: int, h: int, angle: int, q: int) -> tuple:
         """Sprite ``k`` at ``w`` x ``h`` px rotated ``angle`` degrees clockwise at opacity
         ``q`` steps: the pixel stores of its RGB and alpha, and its width and height."""
-        tile = self.sprites[k].resize((w, h), Image.BILINEAR)
-        if angle:
-            tile = tile.rotate(-angle, Image.BICUBIC, expand=True)
-        alpha = tile.getchannel("A")
+        im = tile(self.sprites[k], w, h, angle)
+        alpha = im.getchannel("A")
         if q < self.OPACITY_STEPS:
             alpha = alpha.point(self._fade[q])
-        return tile.convert("RGB").im, alpha.im, tile.width, tile.height
+        return im.convert("RGB").im, alpha.im, im.width, im.height
 
 
 def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[Image.Image]:
@@ -158,15 +131,12 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     frames = resample(chart.frames, int(round(fps * seconds)))
     vx, vy = view_of(svg)[:2]
     back = backdrop(svg, scale)
-    kind, art = arts(chart, table, units.colors)
+    pairs, kind = distinct(table, chart.layers, units.colors)
     # drawn size per frame and unit, canvas px
     drawn = 2 * np.stack([units.half_w, units.half_h], axis=1)[None] * frames[:, :, 3:4]
-    sprites = []
-    for k, (fragment, box) in enumerate(art):
-        big = drawn[:, kind == k].reshape(-1, 2).max(axis=0) * scale
-        sprites.append(sprite(fragment, "m", box, (max(1, int(np.ceil(big[0]))),
-                                                   max(1, int(np.ceil(big[1]))))))
-    paint = Compositor(sprites, (vx, vy), scale)
+    big = np.zeros((len(pairs), 2))
+    np.maximum.at(big, kind, drawn.max(axis=0) * scale)
+    paint = Compositor(sprites(pairs, np.ceil(big)), (vx, vy), scale)
     opaque = np.ones((len(kind), 1), np.float32)
     return [paint.draw(back, kind, np.concatenate([f[:, :3], d, opaque], axis=1))
             for f, d in zip(frames, drawn)]

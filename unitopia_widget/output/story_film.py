@@ -1,6 +1,6 @@
 """A story as a film: each slide held, the transitions between them (GIF, WebP, MP4, WebM).
 
-Every distinct mark art of every slide is rendered once (``animation.sprite``) at the
+Every distinct mark art of every slide is rendered once (``composite.sprites``) at the
 largest size it is drawn at, and each frame is composited by ``animation.Compositor``
 over the slides' pages without their units, cross-faded during a transition. All
 slides are framed by one box, the union of their pages (canvas px).
@@ -11,7 +11,8 @@ import numpy as np
 from PIL import Image
 
 from . import transition
-from .animation import Compositor, arts, backdrop, sprite, view_of
+from .animation import Compositor, backdrop, view_of
+from .composite import distinct, sprites
 
 
 def union_view(svgs) -> tuple[float, float, float, float]:
@@ -43,22 +44,20 @@ def render(slides, plans, fps: float, hold: float, seconds: float,
     ids: dict = {}
     kinds, art, big = [], [], []
     for chart, _, states in slides:   # one sprite per art over all slides, at its largest size
-        kind, found = arts(chart, chart.placements, chart._placed.colors)
+        found, kind = distinct(chart.placements, chart.layers, chart._placed.colors)
         local = []
-        for fragment, box in found:
-            key = (fragment, tuple(float(v) for v in box))
+        for mark, color in found:
+            key = (mark.svg_fragment("m", color), tuple(float(v) for v in mark.box_size))
             if key not in ids:
                 ids[key] = len(art)
-                art.append(key)
+                art.append((mark, color))
                 big.append(np.zeros(2))
             local.append(ids[key])
         glob = np.array(local, dtype=int)[kind]
         for k in np.unique(glob):
             big[k] = np.maximum(big[k], np.abs(states[glob == k, 3:5]).max(axis=0))
         kinds.append(glob)
-    sprites = [sprite(fragment, "m", box, tuple(max(1, int(np.ceil(v * scale))) for v in size))
-               for (fragment, box), size in zip(art, big)]
-    paint = Compositor(sprites, view[:2], scale)
+    paint = Compositor(sprites(art, np.ceil(np.array(big).reshape(-1, 2) * scale)), view[:2], scale)
     held = max(1, int(round(fps * hold)))
 
     def still(k):
