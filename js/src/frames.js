@@ -40,6 +40,18 @@ export function angleDelta(a, b) {
   return ((((b - a) % 360) + 540) % 360) - 180;
 }
 
+/** out = from + (to - from) * alpha per unit, angles the short way round; returns out. */
+export function lerpFrame(out, from, to, alpha) {
+  for (let i = 0; i < to.length; i += 4) {
+    out[i] = from[i] + (to[i] - from[i]) * alpha;
+    out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
+    // equal angles (upright marks: every layout without rotation) skip the modular delta
+    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
+    out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
+  }
+  return out;
+}
+
 /**
  * Interpolates between the frame on screen and the latest frame received, over about the
  * interval at which frames arrive, so a 30 Hz stream animates smoothly at the display rate.
@@ -102,12 +114,7 @@ export class FrameInterpolator {
       this.settled = true;
       return true;
     }
-    for (let i = 0; i < to.length; i += 4) {
-      current[i] = from[i] + (to[i] - from[i]) * alpha;
-      current[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
-      current[i + 2] = from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
-      current[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
-    }
+    lerpFrame(current, from, to, alpha);
     return true;
   }
 }

@@ -3,7 +3,7 @@
 // control is replay-control.js). Nothing is sent: the marks are drawn from the recorded
 // frames through the usual draw path.
 // Frames are Float32Array (N, 4) row-major: x, y (canvas px), angle (degrees), scale.
-import { angleDelta } from "./frames.js";
+import { lerpFrame } from "./frames.js";
 
 /** Bytes of frames one view keeps: 64 MiB, so 20,000 units keep 209 frames. */
 export const BUDGET_BYTES = 64 * 1024 * 1024;
@@ -11,18 +11,6 @@ export const BUDGET_BYTES = 64 * 1024 * 1024;
 export const PLAY_FPS = 30;
 /** ...but a replay lasts at most this long: a longer run plays faster. */
 export const MAX_SECONDS = 10;
-
-/** out = from + (to - from) * alpha per unit, angles the short way round; returns out. */
-export function lerpFrame(out, from, to, alpha) {
-  for (let i = 0; i < to.length; i += 4) {
-    out[i] = from[i] + (to[i] - from[i]) * alpha;
-    out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
-    // equal angles (upright marks: every layout without rotation) skip the modular delta
-    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
-    out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
-  }
-  return out;
-}
 
 /**
  * A run's frames within `budgetBytes`: every received frame until the budget is full, then

@@ -1,6 +1,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { Recording, Player, lerpFrame, BUDGET_BYTES } from "../src/replay.js";
+import { Recording, Player, BUDGET_BYTES } from "../src/replay.js";
+import { lerpFrame } from "../src/frames.js";
 
 /** A frame of `n` units, all at x = t, y = 2t, angle 0, scale 1. */
 const frameAt = (t, n = 2) => new Float32Array(Array.from({ length: n }, () => [t, 2 * t, 0, 1]).flat());

@@ -504,6 +504,15 @@ function sameFrame(a, b) {
 function angleDelta(a, b) {
   return ((b - a) % 360 + 540) % 360 - 180;
 }
+function lerpFrame(out, from, to, alpha) {
+  for (let i = 0; i < to.length; i += 4) {
+    out[i] = from[i] + (to[i] - from[i]) * alpha;
+    out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
+    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
+    out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
+  }
+  return out;
+}
 var FrameInterpolator = class {
   constructor({ minMs = 16, maxMs = 250 } = {}) {
     this.minMs = minMs;
@@ -559,12 +568,7 @@ var FrameInterpolator = class {
       this.settled = true;
       return true;
     }
-    for (let i = 0; i < to.length; i += 4) {
-      current[i] = from[i] + (to[i] - from[i]) * alpha;
-      current[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
-      current[i + 2] = from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
-      current[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
-    }
+    lerpFrame(current, from, to, alpha);
     return true;
   }
 };
@@ -2620,15 +2624,6 @@ function createToggles(side, onGuides) {
 var BUDGET_BYTES = 64 * 1024 * 1024;
 var PLAY_FPS = 30;
 var MAX_SECONDS = 10;
-function lerpFrame(out, from, to, alpha) {
-  for (let i = 0; i < to.length; i += 4) {
-    out[i] = from[i] + (to[i] - from[i]) * alpha;
-    out[i + 1] = from[i + 1] + (to[i + 1] - from[i + 1]) * alpha;
-    out[i + 2] = from[i + 2] === to[i + 2] ? to[i + 2] : from[i + 2] + angleDelta(from[i + 2], to[i + 2]) * alpha;
-    out[i + 3] = from[i + 3] + (to[i + 3] - from[i + 3]) * alpha;
-  }
-  return out;
-}
 var Recording = class {
   constructor(budgetBytes = BUDGET_BYTES) {
     if (!(budgetBytes > 0)) throw new RangeError(`budgetBytes must be a positive number of bytes, got ${budgetBytes}`);
