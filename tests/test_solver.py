@@ -155,6 +155,23 @@ def test_frames_are_float32_n_by_4_and_end_on_the_result():
     assert len(frames) == 1 + c.result.iterations // 5 + 1
 
 
+def test_the_start_frame_is_sent_before_the_region_fields_are_made(monkeypatch):
+    # a large layout's fields take a while: the live view shows the start meanwhile
+    frames, seen = [], []
+    fields = engine._fields
+    monkeypatch.setattr(engine, "_fields", lambda *a: (seen.append(len(frames)), fields(*a))[1])
+    c = chart(25, iterations=21)
+    c.layout(on_frame=lambda f: frames.append(np.array(f, copy=True)), frame_every=3)
+    assert seen == [1]
+    assert len(frames) == 1 + c.result.iterations // 3 + 1   # once: the solver does not send it again
+    # the same frame the solver sends first when it is given the problem
+    units = engine.bind(c.df, c.layers)
+    problem = engine.build_problem(units, c.layers, c.canvas, c.seed, "cpu")
+    solved = []
+    solve(problem, on_frame=solved.append, cancel=lambda: True)
+    np.testing.assert_array_equal(frames[0], solved[0])
+
+
 def test_frames_show_the_scale_growing_in_a_closed_container():
     frames = []
     chart(30, iterations=120).layout(on_frame=frames.append, frame_every=3)

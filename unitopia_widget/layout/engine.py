@@ -29,7 +29,7 @@ from .losses import CanvasTerms, sweep_of
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
-from .solver import Cancelled, Problem, Result, solve
+from .solver import Cancelled, Problem, Result, frame, solve
 from .start import (any_angle, emission_ranks, footprint_radius, orientation_targets,
                     packed_scales, spot_cost, start_positions)
 from .pins import pin_problem, pinned_units
@@ -241,9 +241,11 @@ def _widest_disc(container, canvas) -> float:
 
 def build_problem(units: Units, layers, canvas, seed: int, device: str,
                   max_iterations: int | None = None, scales: str = "shared",
-                  abort=None) -> Problem:
+                  abort=None, on_start=None) -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``; ``abort()``
-    returning True between its steps raises ``Cancelled``."""
+    returning True between its steps raises ``Cancelled``. ``on_start(frame)`` gets the start
+    frame (``solver.frame``) as soon as the start positions are known, before the region
+    fields and sprites: what ``solve`` would send first."""
     order = block_order(layers)
     # each layer's widest disc, measured once for the start scale and the packed one
     caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
@@ -270,6 +272,21 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = torch.device(device)
+    generator = torch.Generator().manual_seed(int(seed))
+    start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
+    arrange.snap(start, units, layers, canvas, unit_scale, lambda layer, pts: spot_cost(
+        layer, layer.region, canvas, pts), rho_start)
+    anchor = positions.anchors(units, layers, canvas, footprint_radius(units) * unit_scale, rho_start)
+    if anchor is not None:
+        positions.dodge(start.center, units, layers, canvas, footprint_radius(units) * unit_scale,
+                        *anchor[:3], lambda idx: emission_ranks(units.order[idx]), rho_start)
+        anchor = positions.Anchor(*anchor, radius=r_mean, device=dev, band=units.band)
+    placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
+                          orientation=orientation_targets(units, layers, canvas, dev),
+                          tracks=start.tracks(dev), drift=start.drift)
+    if on_start is not None:   # the start is known: a live view shows it while the fields
+        on_start(frame(placement, unit_scale))   # and sprites are made
+    _check(abort)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
     _check(abort)
     chain = torch.zeros(len(layers), len(layers))
@@ -296,18 +313,6 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                             else torch.zeros_like(f[0]) for f, layer in zip(fields, layers)]).to(dev),
         blocks=blocks.to(dev), rests=rests.to(dev) if rests.any() else None, sweeps=sweeps,
         shape=grid.shape, norm=norm, w_fill=0.15 if free_scale else 0.0)
-    generator = torch.Generator().manual_seed(int(seed))
-    start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
-    arrange.snap(start, units, layers, canvas, unit_scale, lambda layer, pts: spot_cost(
-        layer, layer.region, canvas, pts), rho_start)
-    anchor = positions.anchors(units, layers, canvas, footprint_radius(units) * unit_scale, rho_start)
-    if anchor is not None:
-        positions.dodge(start.center, units, layers, canvas, footprint_radius(units) * unit_scale,
-                        *anchor[:3], lambda idx: emission_ranks(units.order[idx]), rho_start)
-        anchor = positions.Anchor(*anchor, radius=r_mean, device=dev, band=units.band)
-    placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
-                          orientation=orientation_targets(units, layers, canvas, dev),
-                          tracks=start.tracks(dev), drift=start.drift)
     # one per distinct mark: a layer's units may draw different marks
     _check(abort)
     pyramids = [_pyramid(mark, str(dev)) for mark in units.sprites]
@@ -390,14 +395,16 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     fresh start)."""
     units = bind(df, layers)
     _check(abort)
-    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
-                            abort=abort)
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
+    # a fresh, unpinned start is the solver's start: it is shown before the fields are made
+    early = on_frame if previous is None and len(pinned) == 0 else None
+    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
+                            abort=abort, on_start=early)
     if previous is not None:
         problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
     problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
-                   frame_every=frame_every)
+                   frame_every=frame_every, start_frame=early is None)
     if result.iterations == 0 and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")
     table = placements(units, layers, result)

@@ -102,8 +102,10 @@ class Result:
 
 
 def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
-          cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None) -> Result:
-    """Run the layout: render, step, read back, then the rules of ``schedule.SCHEDULE``."""
+          cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None,
+          start_frame: bool = True) -> Result:
+    """Run the layout: render, step, read back, then the rules of ``schedule.SCHEDULE``.
+    ``start_frame=False``: the caller has sent the start frame (``build_problem``'s ``on_start``)."""
     p = problem
     dev = torch.device(p.device)
     started = time.perf_counter()
@@ -138,8 +140,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
               polish_left=p.polish_iterations, room=np.zeros(ctl.count, dtype=bool))
     if s.stage.max() > 0:
         place.hold(s.stage > s.poured)
-    if on_frame is not None:   # the start: a live view shows the marks before the first steps
-        on_frame(_frame(place, ctl.unit_scale()))
+    if on_frame is not None and start_frame:   # the start: shown before the first steps
+        on_frame(frame(place, ctl.unit_scale()))
     cancelled = False
     while not s.done:
         if cancel is not None and cancel():
@@ -173,7 +175,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         s.loss_value, sums = float(readings[0]), readings[1:].reshape(4, n_layers).astype(float)
         s.stats = shares(sums.sum(1), p.terms.inside_total)
         if on_frame is not None and s.iteration % frame_every == 0:
-            on_frame(_frame(place, ctl.unit_scale()))
+            on_frame(frame(place, ctl.unit_scale()))
         if on_progress is not None:
             on_progress(s.iteration, s.loss_value, s.stats)
         s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
@@ -182,7 +184,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     center, angle = place.transforms()
     unit_scale = ctl.unit_scale()
     if on_frame is not None:
-        on_frame(_frame(place, unit_scale))
+        on_frame(frame(place, unit_scale))
     stats = dict(p.terms.stats, loss=s.loss_value)
     return Result(center=center.detach().cpu().numpy().astype(np.float64),
                   angle=np.degrees(angle.detach().cpu().numpy().astype(np.float64)),
@@ -192,7 +194,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                   axes=[] if p.anchor is None else list(p.anchor.axes))
 
 
-def _frame(place: Placement, scale: np.ndarray) -> np.ndarray:
+def frame(place: Placement, scale: np.ndarray) -> np.ndarray:
     """float32 ``(N, 4)``: x, y, angle (degrees), the unit's global scale."""
     with torch.no_grad():
         center, angle = place.transforms()
