@@ -2,13 +2,15 @@
 many categories, datetime colour scales, the legend's name and its caps."""
 import warnings
 import xml.etree.ElementTree as ET
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.design.encodings import CATEGORICAL, MISSING_COLOR, encode, sorted_unique
+from unitopia_widget.design.encodings import (CATEGORICAL, MISSING_COLOR, encode, sorted_unique,
+                                              warn_small_marks)
 
 SVG = "{http://www.w3.org/2000/svg}"
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -113,6 +115,14 @@ def test_marks_drawn_under_two_pixels_warn_and_suggest_a_log_scale():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         laid_out(pd.DataFrame({"v": [1.0, 3.0, 5.0]}), mark="circle", size="v")
+
+
+def test_the_small_mark_warning_names_the_spread_of_the_side_that_varies():
+    # strands: one width, heights over 200x; the spread is the heights', not the widths' 1x
+    table = pd.DataFrame({"width": [1.5] * 3, "height": [3.0, 30.0, 600.0]})
+    layer = SimpleNamespace(encodings={"size": None, "width": None, "height": "len"})
+    with pytest.warns(UserWarning, match=r"3 of 3 marks .*height='len' spans 200x in extent"):
+        warn_small_marks(table, [layer])
 
 
 def legend_titles(svg):

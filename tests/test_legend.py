@@ -107,7 +107,10 @@ def test_default_legend_only_when_a_channel_is_bound():
     c = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0]}), iterations=20)
     c.layout()
     assert 'class="legend"' not in c.to_svg()
-    assert "1 mark = 1 row (3 rows)" in c.to_svg(legend=True)
+    svg = c.to_svg(legend=True)
+    # one layer: the title does not repeat its entry's count
+    assert "1 mark = 1 row<" in svg and [g.find(f"{SVG}text").text
+                                          for g in entries(svg, "unit")] == ["3 rows"]
 
 
 def test_title_and_caption_are_escaped_text_and_bounded(chart):

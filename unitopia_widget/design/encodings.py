@@ -344,7 +344,10 @@ def warn_small_marks(table: pd.DataFrame, layers) -> None:
     bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
                     for c in ("size", "width", "height") if isinstance(layer.encodings[c], str)})
     small = int((side < MIN_DRAWN).sum())
-    spread = f" ({', '.join(bound)} spans {side.max() / side.min():,.0f}x in extent)" if bound else ""
+    # the spread of the side that varies most: strands spread their height, not their width
+    w, h = table["width"].to_numpy(), table["height"].to_numpy()
+    ratio = max(w.max() / w.min(), h.max() / h.min())
+    spread = f" ({', '.join(bound)} spans {ratio:,.0f}x in extent)" if bound else ""
     warnings.warn(f"{small} of {len(side)} marks are drawn under {MIN_DRAWN:g} px across (the "
                   f"smallest {side.min():.2g} px){spread}; bind a log-scaled column "
                   f"(np.log1p), map it onto a range of sizes (size_range=(min_px, max_px), or "

@@ -323,8 +323,9 @@ def _range_note(df, rows, layer, units, boxes, i: int, channel: str) -> str:
 
 
 def _unit_key(df, rows, layers, units, boxes) -> Section:
-    n = len(units.rows)
-    sec = Section(f"1 mark = 1 row ({n} rows)")
+    # the total only over several layers: one layer's entry already counts its rows
+    total = f" ({len(units.rows)} rows)" if len(layers) > 1 else ""
+    sec = Section(f"1 mark = 1 row{total}")
     for i, layer in enumerate(layers):
         count = int((units.layer == i).sum())
         color = neutral(layer, units, i)
