@@ -6,7 +6,6 @@ a front end.
 """
 from __future__ import annotations
 
-import json
 import os
 import warnings
 
@@ -18,7 +17,7 @@ from .layout.frames import Frames
 from .design.encodings import (NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields,
                                warn_small_marks)
 from .output import animation, html
-from .output.files import atomic_write
+from .output.files import atomic_write, write_json
 from .output.publish import PageOptions, export_png, export_svg
 from .hand import HandControl
 from .design.scene import SCHEMA, VERSION, Layer, block_order, check_design_header
@@ -368,7 +367,7 @@ class Chart(HandControl):
         elif ext == ".png":
             atomic_write(path, self.to_png(2.0, legend, title, caption, outline, axes))
         elif ext == ".json":
-            atomic_write(path, json.dumps(self.design(), indent=1).encode())
+            write_json(path, self.design())
         else:
             raise ValueError(f"save: unknown file type {ext!r} in {path!r}; use .svg, .png, .json, .html, .gif, .webp, .mp4 or .webm")
 

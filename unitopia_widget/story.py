@@ -9,7 +9,6 @@ design JSON (the slides' designs, in order).
 """
 from __future__ import annotations
 
-import json
 import os
 from numbers import Real
 
@@ -19,7 +18,7 @@ import pandas as pd
 from .chart import Chart
 from .design.files import read_json
 from .output import animation, story_film, story_page, transition
-from .output.files import atomic_write
+from .output.files import atomic_write, write_json
 from .output.page import TITLE_CHARS, check_text
 
 STORY_SCHEMA = "unitopia-story"
@@ -145,7 +144,7 @@ class Story:
             raise ValueError(f"save: fps, hold and seconds are for a film "
                              f"({', '.join(animation.FORMATS)}), not {ext!r}")
         if ext == ".json":
-            atomic_write(path, json.dumps(self.to_json(), indent=1).encode())
+            write_json(path, self.to_json())
         elif ext == ".html":
             atomic_write(path, story_page.page(self.player(), next((t for t in self.titles if t),
                                                                    None)).encode())

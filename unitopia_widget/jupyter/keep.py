@@ -7,14 +7,13 @@ are taken in the kernel's working folder, which Jupyter starts in the notebook's
 """
 from __future__ import annotations
 
-import json
 import os
 import pathlib
 
 import pandas as pd
 
 from ..design.files import design_code, load_design
-from ..output.files import atomic_write
+from ..output.files import write_json
 
 SUFFIX = ".unitopia.json"
 FALLBACK = "design"   # the stem when no notebook is known (a script, a plain IPython)
@@ -47,13 +46,6 @@ def default_path() -> pathlib.Path:
     return notebook.with_name(notebook.name[:-len(".ipynb")] + SUFFIX)
 
 
-def write(path, design: dict) -> pathlib.Path:
-    """Write ``design`` to ``path`` whole (a crash never leaves half a file); returns it."""
-    path = pathlib.Path(path)
-    atomic_write(os.fspath(path), json.dumps(design, indent=1).encode())
-    return path
-
-
 class KeptDesign:
     """``UnitoPia``'s design files: ``load``, ``from_design``, ``save_design``,
     ``design_path`` and ``to_code``; needs ``_chart`` and ``_design_path``."""
@@ -76,7 +68,8 @@ class KeptDesign:
         to ``path``, and keep that file current from now on (``design_path``); a re-executed
         ``w = uw.UnitoPia.load(path, df)`` then restores it. Returns the path."""
         self._design_path = default_path() if path is None else pathlib.Path(path)
-        return write(self._design_path, self._chart.design())
+        write_json(self._design_path, self._chart.design())
+        return self._design_path
 
     @classmethod
     def from_design(cls, df: pd.DataFrame, design: dict, **kwargs) -> "UnitoPia":

@@ -20,7 +20,7 @@ from ..design import icons
 from ..chart import ARGUMENTS, Chart, check_kwargs
 from ..design.files import load_design
 from ..design.encodings import rgba
-from . import keep
+from ..output.files import write_json
 from .keep import KeptDesign
 from .pins import Pinning
 from .notebook import StaticDisplay
@@ -351,7 +351,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         self.stale = laid_out and _layout_key(self.design) != self._laid_out
         self._push_extras()
         if self._design_path is not None:
-            keep.write(self._design_path, self.design)
+            write_json(self._design_path, self.design)
 
     def _push_units(self) -> None:
         units = self._chart._units

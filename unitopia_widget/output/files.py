@@ -1,6 +1,7 @@
 """Files written whole or not at all: every export and design save goes through here."""
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 
@@ -23,3 +24,8 @@ def atomic_write(path: str, data: bytes) -> None:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+def write_json(path, value) -> None:
+    """Write ``value`` (a design, a story) to ``path`` as indented JSON, whole or not at all."""
+    atomic_write(os.fspath(path), json.dumps(value, indent=1).encode())
