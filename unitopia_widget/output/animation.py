@@ -12,13 +12,12 @@ from __future__ import annotations
 import io
 import os
 import re
-from math import floor
 from numbers import Real
 
 import numpy as np
 from PIL import Image
 
-from .composite import distinct, sprites, tile
+from .composite import Compositor, distinct, sprites
 from .export import png_array
 
 FORMATS = (".gif", ".webp", ".mp4", ".webm")
@@ -67,58 +66,6 @@ def backdrop(svg: str, scale: float = 1.0, view=None) -> Image.Image:
     back = Image.new("RGBA", size, "white")
     back.alpha_composite(art.resize(size) if art.size != size else art)
     return back.convert("RGB")
-
-
-class Compositor:
-    """Draws units as sprites over a backdrop: each sprite resized, rotated and faded
-    once per (size, angle, opacity) it is drawn at, then pasted.
-
-    ``sprites``: RGBA images, one per art; ``origin``: the canvas point at the top-left
-    pixel; ``scale``: output px per canvas px."""
-
-    OPACITY_STEPS = 32   # opacities are drawn in 1/32 steps
-
-    def __init__(self, sprites: list[Image.Image], origin=(0.0, 0.0), scale: float = 1.0):
-        self.sprites, self.origin, self.scale = sprites, origin, scale
-        self._cache: dict = {}
-        self._fade = [[round(v * q / self.OPACITY_STEPS) for v in range(256)]
-                      for q in range(self.OPACITY_STEPS + 1)]
-
-    def draw(self, back: Image.Image, kind: np.ndarray, states: np.ndarray) -> Image.Image:
-        """``back`` (RGB) with units drawn in order; ``kind`` ``(N,)`` art index, ``states``
-        ``(N, 6)``: x, y (canvas px), angle (degrees clockwise), drawn w, h (canvas px),
-        opacity in [0, 1]."""
-        im = back.copy()
-        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
-        wh = np.rint(states[:, 3:5] * self.scale).astype(int)
-        ang = np.rint(states[:, 2]).astype(int) % 360
-        xy = (states[:, :2] - self.origin) * self.scale
-        fade = np.rint(np.clip(states[:, 5], 0, 1) * self.OPACITY_STEPS).astype(int)
-        cache = self._cache
-        for k, w, h, a, q, x, y in zip(kind.tolist(), wh[:, 0].tolist(), wh[:, 1].tolist(),
-                                       ang.tolist(), fade.tolist(), xy[:, 0].tolist(),
-                                       xy[:, 1].tolist()):
-            if w < 1 or h < 1 or q == 0:
-                continue
-            stores = cache.get((k, w, h, a, q))
-            if stores is None:
-                stores = self._tile(k, w, h, a, q)
-                if len(cache) > 50000:
-                    cache.clear()
-                cache[(k, w, h, a, q)] = stores
-            rgb, alpha, tw, th = stores
-            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
-            core.paste(rgb, (x0, y0, x0 + tw, y0 + th), alpha)
-        return im
-
-    def _tile(self, k: int, w: int, h: int, angle: int, q: int) -> tuple:
-        """Sprite ``k`` at ``w`` x ``h`` px rotated ``angle`` degrees clockwise at opacity
-        ``q`` steps: the pixel stores of its RGB and alpha, and its width and height."""
-        im = tile(self.sprites[k], w, h, angle)
-        alpha = im.getchannel("A")
-        if q < self.OPACITY_STEPS:
-            alpha = alpha.point(self._fade[q])
-        return im.convert("RGB").im, alpha.im, im.width, im.height
 
 
 def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[Image.Image]:

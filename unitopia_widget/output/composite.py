@@ -6,7 +6,8 @@ per pair), each at the largest size a unit draws it. Every unit then pastes its
 sprite resized and rotated, centred on its place (the SVG export's transform: the
 mark's box centred on (x, y), rotated clockwise, scaled to its size).
 
-``chart_png`` draws a laid-out chart so: the page under the units (background,
+``Compositor`` pastes the sprites for the PNG export, the settling's film and the
+story's film alike. ``chart_png`` draws a laid-out chart so: the page under the units (background,
 outlines), the units, then the overlay (legend, title, caption). resvg builds one
 node tree per ``<use>`` and refuses a document past its node limit, and its time
 grows with the nodes: 20,000 units of a 51-element icon drawn as one SVG fail,
@@ -104,6 +105,69 @@ def tile(sprite: Image.Image, w: int, h: int, angle: int) -> Image.Image:
     return im.rotate(-angle, Image.BICUBIC, expand=True) if angle else im
 
 
+class Compositor:
+    """Draws units as sprites over a backdrop: each sprite resized, rotated and faded
+    once per (size, angle, opacity) it is drawn at, then pasted.
+
+    ``sprites``: RGBA images, one per art; ``origin``: the canvas point at the top-left
+    pixel; ``scale``: output px per canvas px. The backdrop is RGB (a film's frame) or
+    RGBA whose colour is premultiplied by its alpha (Pillow's "RGBa" bytes labelled RGBA,
+    a transparent page): there the paste of an opaque tile masked by its alpha is the
+    premultiplied "over", ``out = src * a + dst * (1 - a)`` in every channel."""
+
+    OPACITY_STEPS = 32   # opacities are drawn in 1/32 steps
+
+    def __init__(self, sprites: list[Image.Image], origin=(0.0, 0.0), scale: float = 1.0):
+        self.sprites, self.origin, self.scale = sprites, origin, scale
+        self._cache: dict = {}
+        self._cached = 0   # px held by the cache
+        self._fade = [[round(v * q / self.OPACITY_STEPS) for v in range(256)]
+                      for q in range(self.OPACITY_STEPS + 1)]
+
+    def draw(self, back: Image.Image, kind: np.ndarray, states: np.ndarray) -> Image.Image:
+        """``back`` (RGB, or premultiplied RGBA) with units drawn in order; ``kind`` ``(N,)``
+        art index, ``states`` ``(N, 6)``: x, y (canvas px), angle (degrees clockwise), drawn
+        w, h (canvas px), opacity in [0, 1]."""
+        im = back.copy()
+        core = im.im   # the pixel store: its paste skips Image.paste's per-call checks (x5 here)
+        wh = np.rint(states[:, 3:5] * self.scale).astype(int)
+        ang = np.rint(states[:, 2]).astype(int) % 360
+        xy = (states[:, :2] - self.origin) * self.scale
+        fade = np.rint(np.clip(states[:, 5], 0, 1) * self.OPACITY_STEPS).astype(int)
+        cache = self._cache
+        for k, w, h, a, q, x, y in zip(kind.tolist(), wh[:, 0].tolist(), wh[:, 1].tolist(),
+                                       ang.tolist(), fade.tolist(), xy[:, 0].tolist(),
+                                       xy[:, 1].tolist()):
+            if w < 1 or h < 1 or q == 0:
+                continue
+            stores = cache.get((k, w, h, a, q, im.mode))
+            if stores is None:
+                if self._cached > CACHE_PX:
+                    cache.clear()
+                    self._cached = 0
+                stores = cache[(k, w, h, a, q, im.mode)] = self._tile(k, w, h, a, q, im.mode)
+                self._cached += stores[2] * stores[3]
+            src, alpha, tw, th = stores
+            x0, y0 = floor(x - tw / 2 + 0.5), floor(y - th / 2 + 0.5)
+            core.paste(src, (x0, y0, x0 + tw, y0 + th), alpha)
+        return im
+
+    def _tile(self, k: int, w: int, h: int, angle: int, q: int, mode: str) -> tuple:
+        """Sprite ``k`` at ``w`` x ``h`` px rotated ``angle`` degrees clockwise at opacity
+        ``q`` steps: the pixel stores of its colour (``mode``, opaque) and alpha, and its
+        width and height."""
+        im = tile(self.sprites[k], w, h, angle)
+        alpha = im.getchannel("A")
+        if q < self.OPACITY_STEPS:
+            alpha = alpha.point(self._fade[q])
+        if mode == "RGB":
+            src = im.convert("RGB")
+        else:
+            src = im.copy()
+            src.putalpha(255)
+        return src.im, alpha.im, im.width, im.height
+
+
 def _page_png(svg: str, scale: float) -> Image.Image:
     return Image.fromarray(png_array(svg, svg_size(svg), scale), "RGBA")
 
@@ -128,36 +192,14 @@ def chart_png(canvas, table, layers, colors, background=None, page=None, under: 
     pairs, kind = distinct(table, layers, colors)
     boxes = np.array([mark.box_size for mark, _ in pairs], dtype=float).reshape(-1, 2)
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
-    wh = boxes[kind] * cols[:, 3:5] * scale                            # (N, 2) drawn px
+    drawn = boxes[kind] * cols[:, 3:5]                                  # (N, 2) canvas px
     biggest = np.zeros((len(pairs), 2))
-    np.maximum.at(biggest, kind, wh)
+    np.maximum.at(biggest, kind, drawn * scale)
     art = sprites(pairs, biggest)
-    # "over" in premultiplied colour is one blend per pixel, out = src * a + dst * (1 - a),
-    # Pillow's masked paste: straight colour at alpha 255, masked by the tile's alpha
-    work = image.convert("RGBa").tobytes()
-    image = Image.frombytes("RGBA", size, work)
-    core = image.im
-    px = np.rint(wh).astype(int)
-    ang = np.rint(cols[:, 2]).astype(int) % 360
-    xy = (cols[:, :2] - (vx, vy)) * scale
-    cache: dict = {}
-    cached = 0   # px held by the cache
-    for k, (tw, th), a, (x, y) in zip(kind.tolist(), px.tolist(), ang.tolist(), xy.tolist()):
-        if tw < 1 or th < 1:
-            continue
-        stores = cache.get((k, tw, th, a))
-        if stores is None:
-            if cached > CACHE_PX:
-                cache.clear()
-                cached = 0
-            im = tile(art[k], tw, th, a)
-            opaque = im.copy()
-            opaque.putalpha(255)
-            stores = cache[(k, tw, th, a)] = (opaque.im, im.getchannel("A").im, im.width, im.height)
-            cached += im.width * im.height
-        src, alpha, sw, sh = stores
-        x0, y0 = floor(x - sw / 2 + 0.5), floor(y - sh / 2 + 0.5)
-        core.paste(src, (x0, y0, x0 + sw, y0 + sh), alpha)
+    # premultiplied colour, labelled RGBA for the compositor's "over"
+    image = Image.frombytes("RGBA", size, image.convert("RGBa").tobytes())
+    states = np.column_stack([cols[:, :3], drawn, np.ones(len(cols))])
+    image = Compositor(art, (vx, vy), scale).draw(image, kind, states)
     image = Image.frombytes("RGBa", size, image.tobytes()).convert("RGBA")
     if over is not None:
         image.alpha_composite(over)

@@ -1,7 +1,7 @@
 """A story as a film: each slide held, the transitions between them (GIF, WebP, MP4, WebM).
 
 Every distinct mark art of every slide is rendered once (``composite.sprites``) at the
-largest size it is drawn at, and each frame is composited by ``animation.Compositor``
+largest size it is drawn at, and each frame is composited by ``composite.Compositor``
 over the slides' pages without their units, cross-faded during a transition. All
 slides are framed by one box, the union of their pages (canvas px).
 """
@@ -11,8 +11,8 @@ import numpy as np
 from PIL import Image
 
 from . import transition
-from .animation import Compositor, backdrop, view_of
-from .composite import distinct, sprites
+from .animation import backdrop, view_of
+from .composite import Compositor, distinct, sprites
 
 
 def union_view(svgs) -> tuple[float, float, float, float]:
