@@ -162,6 +162,9 @@ def _ring_png(tmp_path, name, ink, paper, *, alpha_paper=255, faint=0, fmt="PNG"
     r = np.hypot(xx - 100, yy - 80)
     truth = (r <= 60) & (r >= 30)
     path = tmp_path / f"{name}.{fmt.lower()}"
+    if fmt == "PNG16":   # 16 bits of grey a sample (scientific and print tools)
+        Image.fromarray(rgba[..., 0].astype(np.uint16) * 257).save(path, format="PNG")
+        return path, truth
     out = Image.fromarray(rgba)
     (out.convert("RGB") if fmt == "JPEG" else out).save(path, format=fmt)
     return path, truth
@@ -169,7 +172,7 @@ def _ring_png(tmp_path, name, ink, paper, *, alpha_paper=255, faint=0, fmt="PNG"
 
 @pytest.mark.parametrize("variant", ["black_on_white", "black_on_white_alpha_faint",
                                      "coloured_on_transparent", "white_on_black_invert",
-                                     "antialiased", "jpeg"])
+                                     "antialiased", "jpeg", "grey_16_bit"])
 def test_image_is_read_as_a_person_sees_it(tmp_path, variant):
     black, white, gold = (0, 0, 0), (255, 255, 255), (240, 200, 40)
     kw = {"black_on_white": dict(ink=black, paper=white),
@@ -178,7 +181,9 @@ def test_image_is_read_as_a_person_sees_it(tmp_path, variant):
           "coloured_on_transparent": dict(ink=gold, paper=white, alpha_paper=0),
           "white_on_black_invert": dict(ink=white, paper=black),
           "antialiased": dict(ink=black, paper=white, aa=True, faint=64),
-          "jpeg": dict(ink=black, paper=white, fmt="JPEG")}[variant]
+          "jpeg": dict(ink=black, paper=white, fmt="JPEG"),
+          # dark grey on light grey: 8,995 and 60,395 of 65,535
+          "grey_16_bit": dict(ink=(35, 35, 35), paper=(235, 235, 235), fmt="PNG16")}[variant]
     path, truth = _ring_png(tmp_path, variant, **kw)
     c = Container.image(path, invert=variant == "white_on_black_invert")
     mask = np.asarray(c.preview()) == 0

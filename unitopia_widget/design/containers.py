@@ -110,8 +110,8 @@ class Container:
         background (at least half the border pixels have alpha < 50%), inside is
         the opaque figure, whatever its colour; otherwise the image is composited
         over white and inside is what is darker than ``threshold`` (luminance in
-        (0, 1]), so faint alpha pixels, antialiased edges and JPEGs read as drawn.
-        ``invert`` swaps inside and out. Warns when the inside covers more than
+        (0, 1]), so faint alpha pixels, antialiased edges, 16-bit grey and JPEGs read
+        as drawn. ``invert`` swaps inside and out. Warns when the inside covers more than
         90% or less than 0.1% of the image; check :meth:`inside_share` or show the
         container in a notebook to see what was read.
         """

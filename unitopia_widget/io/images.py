@@ -93,9 +93,23 @@ def _open(fp, name: str) -> Image.Image:
         check_pixels(*img.size, what=name)
         try:
             img.load()
-            return img.convert("RGBA")
+            return _rgba(img)
         except (OSError, ValueError, SyntaxError, Image.DecompressionBombError) as exc:
             raise ValueError(f"cannot decode {name}: {exc}") from None
+
+
+def _rgba(img: Image.Image) -> Image.Image:
+    """``img`` in RGBA. Grey of 16 bits a sample (``I;16`` or ``I``, as Pillow opens a 16-bit
+    grey PNG) is scaled to 8 bits first, its tRNS grey value becoming transparency: Pillow's
+    own conversion clips every value past 255, so mid-grey turned white."""
+    if img.mode not in ("I", "I;16", "I;16B", "I;16L"):
+        return img.convert("RGBA")
+    grey = np.asarray(img).astype(np.int64)
+    out = np.empty(grey.shape + (4,), np.uint8)
+    out[..., :3] = np.clip((grey + 128) // 257, 0, 255)[..., None]
+    key = img.info.get("transparency")
+    out[..., 3] = 255 if key is None else np.where(grey == key, 0, 255)
+    return Image.fromarray(out, "RGBA")
 
 
 def _from_array(arr: np.ndarray) -> Image.Image:
@@ -117,7 +131,7 @@ def load_image(source) -> Image.Image:
     """An RGBA PIL image from a path, bytes, data URL, ndarray or PIL image."""
     if isinstance(source, Image.Image):
         check_pixels(*source.size, what="PIL image")
-        return source.convert("RGBA") if source.mode != "RGBA" else source.copy()
+        return _rgba(source) if source.mode != "RGBA" else source.copy()
     if isinstance(source, np.ndarray):
         return _from_array(source)
     if isinstance(source, (bytes, bytearray, memoryview)):
