@@ -12,7 +12,8 @@ design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an indep
 (``measure_svg.py``, kept outside the repository; its path is an argument):
 overlap, outside, emptiness (closed containers: the share farther than one
 median mark radius from any ink), area-to-value CV; blocked layers report
-their mean heights (bottom layer first).
+their mean heights (bottom layer first), or under one point force their mean
+distance from it (innermost layer first).
 
     python benchmarks/designs.py --tool /work/shared/tools/measure_svg.py [NAME ...]
 """
@@ -155,6 +156,20 @@ def design_strata():
     w = uw.UnitoPia(df, mark="circle", size="v", by="year", container=c, canvas=(W, H),
                     forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
     for j in range(1, 5):
+        w.layer(str(j)).set(blocks=[str(j - 1)])
+    return w, [c]
+
+
+def design_rings_strata():
+    """Three layers blocked in turn around a point force, largest marks first, each layer's
+    linear size 2x below the last (4x from first to last), enough marks to ring the one
+    before: rings around the point."""
+    k = np.repeat(np.arange(3), [20, 60, 180])
+    df = pd.DataFrame({"ring": k, "v": lognormal(len(k), 4, 24) * 16.0 ** (-k / 2)})
+    c = uw.Container.ellipse(400, 300, 380, 280)
+    w = uw.UnitoPia(df, mark="circle", size="v", by="ring", color="ring", container=c,
+                    canvas=(W, H), forces=[uw.PointForce(400, 300)], boundary="open", seed=0)
+    for j in (1, 2):
         w.layer(str(j)).set(blocks=[str(j - 1)])
     return w, [c]
 
@@ -334,7 +349,7 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,
-           "strata": design_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
+           "strata": design_strata, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
            "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
            "lettering": design_lettering}
 
@@ -371,6 +386,11 @@ def measure(name, tool, out):
     m = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
     table = w.placements
     heights = [float(table[table.layer == layer.name]["y"].mean()) for layer in w.layers]
+    points = [f for f in w.layers[0].forces if isinstance(f, uw.PointForce)]
+    if len(points) == 1:   # rings: the mean distance from the point instead
+        heights = [float(np.hypot(*(table[table.layer == layer.name][["x", "y"]]
+                                    - [points[0].x, points[0].y]).to_numpy().T).mean())
+                   for layer in w.layers]
     closed = all(layer.boundary == "closed" for layer in w.layers)
     return {"design": name, "seconds": seconds, "overlap": m.get("overlap"),
             "outside": m.get("outside"), "empty": m.get("empty") if closed else None,

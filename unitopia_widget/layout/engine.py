@@ -25,11 +25,12 @@ from ..design.encodings import (Encoded, check_column, continuous_values, encode
                                 linear_extent, is_continuous, missing_warning, palette_for,
                                 unhashable, MIN_DRAWN)
 from ..design.groups import mark_choice
-from .losses import CanvasTerms, sweep_of
+from .losses import CanvasTerms
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
 from .solver import Cancelled, Problem, Result, frame, solve
+from .strata import Radial, sweep_of
 from .start import (any_angle, emission_ranks, footprint_radius, orientation_targets,
                     packed_scales, spot_cost, start_positions)
 from .pins import pin_problem, pinned_units
@@ -295,11 +296,13 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         for b in layers[a].blocks:
             chain[a, names.index(b)] = 1.0
             chain[a] = torch.maximum(chain[a], chain[names.index(b)])
-    # a layer under directional forces rests on the layers it blocks on (their shadow);
-    # others see their ink
+    # a layer under directional or point forces rests on the layers it blocks on (their
+    # shadow, strata.py); others see their ink
     sweeps = tuple(sweep_of(layer.forces) for layer in layers)
     resting = torch.tensor([s is not None for s in sweeps], dtype=chain.dtype)[:, None]
     rests, blocks = chain * resting, chain * (1 - resting)
+    sweeps = tuple(s.on(grid.shape, grid.rho, grid.pad, dev)
+                   if isinstance(s, Radial) and rests[a].any() else s for a, s in enumerate(sweeps))
     # layers that share a container and do not block each other collide both ways
     for a in range(len(layers)):
         for b in range(a + 1, len(layers)):

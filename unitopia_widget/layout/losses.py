@@ -6,13 +6,14 @@ coverage as obstacles ``O[a] = sum_b C[b]`` with gradients stopped: one-way
 blocking (paper section 4.1.2). Layers that share a container and do not
 block each other see each other both ways, so they collide as one layer.
 
-Strata: a layer pulled by directional forces rests on the layers it blocks on,
-as sediment does. Its obstacle is then their ink swept along its force, the
-shadow ``cummax`` of ``min(sum_b C[b], 1)`` down the raster axis nearest the
-force (everything below the other layers' upper envelope, for a downward
-force), so its marks cannot sift into the gaps between larger marks. Layers
-pulled by a point force, or by no force, see the ink itself. With
-``T = C + O``, per raster pixel:
+Strata (``strata.py``): a layer pulled by forces rests on the layers it blocks
+on, as sediment does. Its obstacle is then ``min(sum_b C[b], 1)`` swept along
+its force: down the raster axis nearest a directional force (everything below
+the other layers' upper envelope, for a downward force), or radially in to a
+point force (everything inside their outer envelope around the point), so its
+marks cannot sift into the gaps between larger marks. Layers pulled by both
+kinds of force, or by none, see the ink itself. With ``T = C + O``, per raster
+pixel:
 
 * overlap     ``relu(T - 1)``                 (paper eq. 3 with tau = 1 on coverage)
 * containment ``alpha * field``               (a signed-distance penalty, eq. 4 improved)
@@ -34,7 +35,7 @@ from dataclasses import dataclass
 
 import torch
 
-from ..design.forces import DirectionalForce
+from .strata import RadialShadow, shadow
 
 
 @dataclass
@@ -47,7 +48,8 @@ class CanvasTerms:
     blocks: torch.Tensor       # (L, L) float, blocks[a, b] = 1 when layer a treats b's ink as obstacle
     #: (L, L) float, rests[a, b] = 1 when layer a rests on b: b's ink swept along ``sweeps[a]``
     rests: torch.Tensor | None = None
-    sweeps: tuple = ()         # per layer: (raster dim 0 rows / 1 columns, reversed) or None
+    #: per layer: (raster dim 0 rows / 1 columns, reversed), a ``strata.RadialShadow`` or None
+    sweeps: tuple = ()
     shape: tuple = ()          # (H, W) raster pixels: the slabs' image shape
     norm: float = 1.0          # the marks' total footprint area in raster px^2, a constant normaliser
     w_overlap: float = 1.0
@@ -83,7 +85,9 @@ class CanvasTerms:
         resting = (self.rests.to(own) @ own).clamp_(max=1.0)
         for a, sweep in enumerate(self.sweeps):
             if sweep is not None and bool(self.rests[a].any()):
-                obstacle[a] += shadow(resting[a].view(self.shape), *sweep).reshape(-1)
+                ink = resting[a].view(self.shape)
+                swept = sweep(ink) if isinstance(sweep, RadialShadow) else shadow(ink, *sweep)
+                obstacle[a] += swept.reshape(-1)
         return obstacle
 
     @property
@@ -115,26 +119,6 @@ class CanvasTerms:
             fill = self.w_fill * inside / self.norm if self.w_fill else None
             self._tables = (fields, base, self.w_overlap / self.norm, fill)
         return self._tables
-
-
-def shadow(ink: torch.Tensor, dim: int, reverse: bool) -> torch.Tensor:
-    """``ink (H, W)`` swept along raster ``dim`` (towards higher indices, or lower when
-    ``reverse``): each pixel holds the most ink at or before it along the sweep."""
-    if reverse:
-        return torch.cummax(ink.flip(dim), dim)[0].flip(dim)
-    return torch.cummax(ink, dim)[0]
-
-
-def sweep_of(forces) -> tuple | None:
-    """The sweep (``shadow``'s ``dim, reverse``) of a layer pulled by ``forces``: the raster
-    axis nearest the sum of its directional forces; None with a point force or no pull."""
-    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
-        return None
-    vx = sum(f.strength * f.vector[0] for f in forces)
-    vy = sum(f.strength * f.vector[1] for f in forces)
-    if max(abs(vx), abs(vy)) < 1e-9:
-        return None
-    return (0, vy < 0) if abs(vy) >= abs(vx) else (1, vx < 0)
 
 
 def shares(sums, inside_total: float) -> dict:

@@ -9,8 +9,9 @@ under forces in data order, so sizes mix in it. The clearance is the
 distance to the container's edge and to every disc already placed. Spots lie
 on a fine hexagonal lattice; each keeps its clearance, lowered around every
 disc placed. Layers sharing a container are packed in block order, so a
-layer that blocks on another starts in the room the other left (above it,
-under a downward force).
+layer that blocks on another starts in the room the other left, beyond the
+shadow it casts along the force (above it under a downward force, outside it
+around a point force).
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .lattice import Region, hex_points
+from .strata import cone_distance
 
 SPREAD = 1.5          # footprint radii max / min above which a layer is packed by size
 ASPECT = 2.0          # box long / short side up to which a mark's disc stands for it
@@ -72,7 +74,7 @@ class Packing:
 
     def stamp_swept(self, centers: np.ndarray, radii: np.ndarray, direction) -> None:
         """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` swept along the
-        unit vector ``direction`` without end: the room they shadow (see ``losses.shadow``)."""
+        unit vector ``direction`` without end: the room they shadow (see ``strata.shadow``)."""
         if self.tree is None:
             return
         d = np.asarray(direction, dtype=float)
@@ -80,6 +82,14 @@ class Packing:
             rel = self.points - c
             along = np.maximum(rel @ d, 0.0)[:, None]
             np.minimum(self.clear, np.hypot(*(rel - along * d).T) - r, out=self.clear)
+
+    def stamp_cones(self, centers: np.ndarray, radii: np.ndarray, points: np.ndarray) -> None:
+        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` swept radially
+        in to ``points (k, 2)``: each disc's shadow on its point (``strata.cone_distance``)."""
+        if self.tree is None:
+            return
+        for c, r, p in zip(centers, radii, points):
+            np.minimum(self.clear, cone_distance(self.points, c, r, p), out=self.clear)
 
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
               largest_first: bool = True, roomiest: bool = False, later: float | None = None):

@@ -19,7 +19,7 @@ from ..design.emitters import CurveEmitter, GridEmitter
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
-from .losses import sweep_of
+from .strata import Radial, sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
@@ -78,11 +78,11 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
-                if key in packings and sweep_of(layer.forces) is not None:
-                    # strata: the layers it rests on take the room below their tops
+                sweep = sweep_of(layer.forces)
+                if key in packings and sweep is not None:
+                    # strata: the layers it rests on take the room they shadow
                     below = [j for j in order[:order.index(i)] if resting(layers, i, j)]
-                    packings[key].stamp_swept(*_swept(s.center, radius, units.layer, below,
-                                                      sweep_of(layer.forces)))
+                    _stamp_shadow(packings[key], sweep, s.center, radius, units.layer, below)
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas,
                                        _later(units, layers, order, i, radius))
@@ -195,14 +195,20 @@ def resting(layers, a: int, b: int) -> bool:
     return layers[b].name in seen
 
 
-def _swept(center, radius, layer_of, below, sweep):
-    """Discs ``(k, 2)``, ``(k,)`` of layers ``below`` and the canvas direction ``(2,)`` of
-    ``sweep`` (a raster axis, see ``losses.shadow``) along which they shadow the room."""
+def _stamp_shadow(packing, sweep, center, radius, layer_of, below) -> None:
+    """Lower ``packing``'s clearances by the shadow (``strata.py``) that the discs
+    ``center (N, 2)``, ``radius (N,)`` of the layers ``below`` cast along ``sweep``: swept
+    down a raster axis without end, or radially in to the point that pulls each."""
+    mine = np.isin(layer_of, below)
+    if isinstance(sweep, Radial):
+        owner = sweep.pulling(center[mine])
+        packing.stamp_cones(center[mine], radius[mine],
+                            np.asarray(sweep.points, float)[owner, :2])
+        return
     dim, reverse = sweep
     direction = np.zeros(2)
     direction[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
-    mine = np.isin(layer_of, below)
-    return center[mine], radius[mine], direction
+    packing.stamp_swept(center[mine], radius[mine], direction)
 
 
 def _lengthwise(layer, units, idx) -> bool:

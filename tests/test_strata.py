@@ -1,0 +1,119 @@
+"""Strata under a point force: a layer that blocks on another rests outside it, in rings
+around the point, and never sifts into the gaps between its marks (issue 18, part 3)."""
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+import torch
+
+import unitopia_widget as uw
+from unitopia_widget.layout.strata import Radial, cone_distance
+
+POINT = (200.0, 150.0)
+BINS = 360   # angle bins of the envelope: 1 degree, under a small mark's width at its radius
+
+
+def lognormal(n: int, spread: float, seed: int) -> np.ndarray:
+    """n lognormal values rescaled so that max / min is exactly ``spread``."""
+    logs = np.log(np.random.default_rng(seed).lognormal(0.0, 1.0, n))
+    return np.exp((logs - logs.min()) / np.ptp(logs) * math.log(spread))
+
+
+def polar(x, y, point=POINT):
+    """(angle bin, radius) of canvas points from ``point``."""
+    dx, dy = np.asarray(x) - point[0], np.asarray(y) - point[1]
+    angle = np.arctan2(dy, dx) % (2 * math.pi)
+    return np.minimum((angle / (2 * math.pi) * BINS).astype(int), BINS - 1), np.hypot(dx, dy)
+
+
+def envelope(table, layer: str, point=POINT) -> np.ndarray:
+    """``(BINS,)`` per angle bin around ``point``, the largest radius of a layer's ink (its
+    discs) on the ray through the bin's middle; 0 in a bin without ink."""
+    ray = (np.arange(BINS) + 0.5) / BINS * 2 * math.pi
+    top = np.zeros(BINS)
+    for x, y, w in table[table["layer"] == layer][["x", "y", "width"]].to_numpy():
+        d, a = math.hypot(x - point[0], y - point[1]), math.atan2(y - point[1], x - point[0])
+        off = d * np.sin(ray - a)                   # the ray's distance from the disc's centre
+        far = d * np.cos(ray - a) + np.sqrt(np.maximum((w / 2) ** 2 - off ** 2, 0.0))
+        top = np.where((np.abs(off) <= w / 2) & (far > 0), np.maximum(top, far), top)
+    return top
+
+
+def inside_envelope(table, lower: str, upper: str, point=POINT) -> float:
+    """Share of layer ``upper``'s marks whose centre lies inside the envelope of ``lower``."""
+    up = table[table["layer"] == upper]
+    b, r = polar(up["x"], up["y"], point)
+    return float(np.mean(r < envelope(table, lower, point)[b]))
+
+
+@pytest.fixture(scope="module")
+def rings():
+    """Three layers around a point force, largest first, each blocking on the one before;
+    linear sizes 4x from the first to the last (and 4x in area within each layer)."""
+    torch.set_num_threads(1)
+    k = np.repeat(np.arange(3), [12, 36, 108])    # enough to ring the layer below
+    df = pd.DataFrame({"k": k, "v": lognormal(len(k), 4, 3) * 16.0 ** (-k / 2)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.PointForce(*POINT)], iterations=300)
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    return chart.layout()
+
+
+def test_rings_lie_in_layer_order_and_none_sifts_inside_the_one_it_blocks_on(rings):
+    _, r = polar(rings["x"], rings["y"])
+    mean = pd.Series(r).groupby(rings["layer"].to_numpy()).mean()
+    assert mean["0"] < mean["1"] < mean["2"]
+    worst = max(inside_envelope(rings, str(j - 1), str(j)) for j in (1, 2))
+    assert worst <= 0.05, worst      # 9% of the smallest marks on main: in the largest's gaps
+
+
+def test_the_radial_shadow_fills_the_room_between_the_ink_and_the_point():
+    # one blob of ink to the right of the point: the shadow is the ink's cone to the point
+    h, w = 60, 80
+    ink = torch.zeros(h, w)
+    yy, xx = torch.meshgrid(torch.arange(h) + 0.5, torch.arange(w) + 0.5, indexing="ij")
+    ink[(xx - 60) ** 2 + (yy - 30) ** 2 <= 36] = 1.0
+    shadow = Radial(((20.0, 30.0, 1.0),)).on((h, w), rho=1.0, pad=0, device="cpu")(ink)
+    assert shadow[30, 40] > 0.9 and shadow[30, 25] > 0.9          # between the ink and the point
+    assert shadow[30, 75] < 0.1 and shadow[30, 5] < 0.1           # beyond the ink, behind the point
+    assert shadow[10, 40] < 0.1 and shadow[50, 40] < 0.1          # off the cone
+    cone = cone_distance(torch.stack([xx.reshape(-1), yy.reshape(-1)], 1).double().numpy(),
+                         np.array([60.0, 30.0]), 6.0, np.array([20.0, 30.0]))
+    agree = (cone.reshape(h, w) < -1) == (shadow.numpy() > 0.5)   # the start's cone, well inside
+    assert agree[(cone.reshape(h, w) < -1) | (cone.reshape(h, w) > 1)].mean() > 0.99
+
+
+def test_several_point_piles_each_ring_their_own_point():
+    # three piles apart, three layers each blocking on the one before: each point its own rings
+    points = [(70.0, 100.0), (200.0, 100.0), (330.0, 100.0)]
+    k = np.repeat(np.arange(3), [9, 27, 81])
+    df = pd.DataFrame({"k": k, "v": lognormal(len(k), 4, 3) * 16.0 ** (-k / 2)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 200), boundary="open", fill=0.35,
+                     container=uw.Container.rect(5, 5, 390, 190),
+                     forces=[uw.PointForce(*p) for p in points], iterations=300)
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    table = chart.layout()
+    near = np.argmin([np.hypot(table["x"] - x, table["y"] - y) for x, y in points], axis=0)
+    for p, point in enumerate(points):
+        mine = table[near == p]
+        assert mine["layer"].nunique() == 3                       # every pile has every layer
+        assert max(inside_envelope(mine, str(j - 1), str(j), point) for j in (1, 2)) <= 0.05
+
+
+def test_rings_poured_in_turn_from_an_emitter_around_the_point_rest_outside_each_other():
+    # emitted layers see the shadow in the loss: poured in turn from a ring, each rests on the last
+    k = np.repeat(np.arange(3), [12, 36, 108])
+    df = pd.DataFrame({"k": k, "v": lognormal(len(k), 4, 3) * 16.0 ** (-k / 2)})
+    turn = np.linspace(0, 2 * math.pi, 37)   # cubic Bezier control points along a circle
+    ring = uw.CurveEmitter([(POINT[0] + 140 * math.cos(a), POINT[1] + 140 * math.sin(a)) for a in turn])
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open", emitter=ring,
+                     container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.PointForce(*POINT)], iterations=300)
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    table = chart.layout()
+    assert max(inside_envelope(table, str(j - 1), str(j)) for j in (1, 2)) <= 0.05

@@ -1,0 +1,147 @@
+"""Strata: a layer pulled by forces rests on the layers it blocks on, as sediment does.
+
+Its obstacle is their ink swept along its force (their *shadow*): each pixel holds the most
+ink met from it against the pull, so everything between their ink and where the force pulls
+is taken, and its marks cannot sift into the gaps between larger marks.
+
+* Directional forces: the sweep runs down the raster axis nearest the sum of the forces
+  (a ``cummax``; for a downward force, everything below the other layers' upper envelope).
+* Point forces: the sweep runs radially in to the point; a pixel at radius ``r`` and angle
+  ``a`` holds the most ink at that angle at radius ``r`` and beyond (everything inside the
+  other layers' outer envelope around the point), so the layer rests outside them in
+  rings. With several points each pixel is swept in to the point that pulls it (the nearest,
+  weighted by strength, as in ``forces.potential``), seeing only the ink that point pulls.
+
+A layer pulled by both kinds of force, or by none, sees the ink itself.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+
+from ..design.forces import DirectionalForce, PointForce
+
+RAY_STEP = 1.0     # raster px between samples along a ray
+RAY_SPACING = 2.0  # raster px between neighbouring rays at the farthest pixel, at most
+MAX_RAYS = 2048    # rays per point at most (the spacing widens beyond, on huge rasters)
+
+
+def sweep_of(forces):
+    """The sweep of a layer pulled by ``forces``: ``(dim, reverse)`` for directional forces
+    (``shadow``'s raster axis nearest their sum), a ``Radial`` for point forces, None for
+    a mix of both or no pull."""
+    if not forces:
+        return None
+    if all(isinstance(f, PointForce) for f in forces):
+        pull = tuple((f.x, f.y, f.strength) for f in forces if f.strength > 0)
+        return Radial(pull) if pull else None
+    if not all(isinstance(f, DirectionalForce) for f in forces):
+        return None
+    vx = sum(f.strength * f.vector[0] for f in forces)
+    vy = sum(f.strength * f.vector[1] for f in forces)
+    if max(abs(vx), abs(vy)) < 1e-9:
+        return None
+    return (0, vy < 0) if abs(vy) >= abs(vx) else (1, vx < 0)
+
+
+def shadow(ink: torch.Tensor, dim: int, reverse: bool) -> torch.Tensor:
+    """``ink (H, W)`` swept along raster ``dim`` (towards higher indices, or lower when
+    ``reverse``): each pixel holds the most ink at or before it along the sweep."""
+    if reverse:
+        return torch.cummax(ink.flip(dim), dim)[0].flip(dim)
+    return torch.cummax(ink, dim)[0]
+
+
+@dataclass(frozen=True)
+class Radial:
+    """The radial sweep of point forces ``points``: ``(x, y, strength)`` canvas px."""
+
+    points: tuple
+
+    def pulling(self, xy: np.ndarray) -> np.ndarray:
+        """``(n,)`` index of the point that pulls each of ``xy (n, 2)`` canvas px."""
+        p = np.asarray(self.points, float)
+        dist = np.hypot(xy[:, None, 0] - p[None, :, 0], xy[:, None, 1] - p[None, :, 1])
+        return np.argmin(dist * p[None, :, 2], axis=1)
+
+    def on(self, shape, rho: float, pad: int, device) -> "RadialShadow":
+        """The sweep on a raster of ``shape (H, W)`` px, ``rho`` raster px per canvas px and
+        ``pad`` px of border (``RasterGrid``'s pixel centres)."""
+        return RadialShadow(self, tuple(shape), rho, pad, torch.device(device))
+
+
+class RadialShadow:
+    """``shadow(ink (H, W)) -> (H, W)``: ink swept in to the points of a ``Radial``.
+
+    The ink is resampled onto rays from each point (``grid_sample``, ``RAY_STEP`` px apart
+    along a ray, at most ``RAY_SPACING`` px apart across), swept in along each ray (a
+    reversed ``cummax``), and resampled back: each pixel reads its own point's rays. Samples
+    on a point's rays that another point pulls read no ink. The sampling grids are made once.
+    """
+
+    def __init__(self, radial: Radial, shape, rho: float, pad: int, device):
+        h, w = shape
+        self.shape = shape
+        # canvas px -> continuous raster pixel index (pixel centres at integers)
+        to_px = lambda x, y: (x * rho + pad - 0.5, y * rho + pad - 0.5)   # noqa: E731
+        corners = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [-0.5, h - 0.5], [w - 0.5, h - 0.5]])
+        centres = np.array([to_px(x, y) for x, y, _ in radial.points])        # (K, 2) u, v
+        reach = float(np.hypot(*(corners[None] - centres[:, None]).transpose(2, 0, 1)).max())
+        n_r = max(int(math.ceil(reach / RAY_STEP)) + 1, 2)
+        n_a = int(min(max(math.ceil(2 * math.pi * reach / RAY_SPACING), 8), MAX_RAYS))
+        self.rays = n_a + 1                       # the last ray is the first again (angle 2 pi)
+        angle = torch.arange(self.rays, dtype=torch.float64) * (2 * math.pi / n_a)
+        radius = torch.linspace(0.0, reach, n_r, dtype=torch.float64)
+        grids, owned = [], []
+        for k, (cu, cv) in enumerate(centres):
+            u = cu + torch.cos(angle)[:, None] * radius[None]                 # (rays, n_r)
+            v = cv + torch.sin(angle)[:, None] * radius[None]
+            grids.append(torch.stack([u / max(w - 1, 1) * 2 - 1, v / max(h - 1, 1) * 2 - 1], -1))
+            canvas = np.stack([(u.numpy() - pad + 0.5) / rho, (v.numpy() - pad + 0.5) / rho], -1)
+            owned.append(torch.from_numpy(radial.pulling(canvas.reshape(-1, 2)) == k)
+                         .reshape(u.shape))
+        self.to_rays = torch.cat(grids)[None].float().to(device)              # (1, K rays, n_r, 2)
+        self.owned = torch.cat(owned)[None, None].float().to(device)         # (1, 1, K rays, n_r)
+        # every pixel back to its own point's rays: (angle, radius) -> the rays' image
+        vv, uu = torch.meshgrid(torch.arange(h, dtype=torch.float64),
+                                torch.arange(w, dtype=torch.float64), indexing="ij")
+        canvas = np.stack([(uu.numpy() - pad + 0.5) / rho, (vv.numpy() - pad + 0.5) / rho], -1)
+        k = torch.from_numpy(radial.pulling(canvas.reshape(-1, 2)).reshape(h, w))
+        cu, cv = (torch.from_numpy(centres[:, i])[k] for i in (0, 1))
+        a = torch.atan2(vv - cv, uu - cu) % (2 * math.pi)
+        row = k * self.rays + a / (2 * math.pi) * n_a                        # ray image row
+        total = len(centres) * self.rays
+        x = torch.hypot(uu - cu, vv - cv) / reach * 2 - 1
+        self.to_pixels = torch.stack([x, row / max(total - 1, 1) * 2 - 1], -1)[None] \
+            .float().to(device)                                               # (1, H, W, 2)
+
+    def __call__(self, ink: torch.Tensor) -> torch.Tensor:
+        on_rays = F.grid_sample(ink[None, None], self.to_rays.to(ink.dtype), mode="bilinear",
+                                padding_mode="zeros", align_corners=True) * self.owned.to(ink)
+        swept = torch.cummax(on_rays.flip(-1), -1)[0].flip(-1)               # in to the point
+        back = F.grid_sample(swept, self.to_pixels.to(ink.dtype), mode="bilinear",
+                             padding_mode="border", align_corners=True)
+        return back[0, 0]
+
+
+def cone_distance(xy: np.ndarray, center: np.ndarray, r: float, point: np.ndarray) -> np.ndarray:
+    """``(n,)`` signed distance (canvas px, negative inside) from ``xy (n, 2)`` to the radial
+    shadow of the disc ``center (2,)``, ``r`` on ``point (2,)``: the convex hull of the disc
+    and the point (a cone with a rounded end; the disc itself when it covers the point)."""
+    axis = np.asarray(center, float) - point
+    h = float(np.hypot(*axis))
+    rel = xy - point
+    if h <= r:
+        return np.hypot(*(xy - center).T) - r
+    e = axis / h
+    along, across = rel @ e, np.abs(rel @ np.array([-e[1], e[0]]))
+    b = -r / h                      # the cone's side: sin of its half angle, negated
+    a = math.sqrt(1.0 - b * b)
+    k = across * -b + along * a     # where the side's normal splits the point, side and disc
+    side = across * a + along * b
+    return np.where(k < 0, np.hypot(along, across),
+                    np.where(k > a * h, np.hypot(along - h, across) - r, side))
