@@ -246,7 +246,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     """Assemble the solver's problem for ``units`` laid out by ``layers``; ``abort()``
     returning True between its steps raises ``Cancelled``. ``on_start(frame)`` gets the start
     frame (``solver.frame``) as soon as the start positions are known, before the region
-    fields and sprites: what ``solve`` would send first."""
+    fields and sprites: what ``solve`` would send first; ``abort`` is not asked after it."""
     order = block_order(layers)
     # each layer's widest disc, measured once for the start scale and the packed one
     caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
@@ -286,7 +286,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                           orientation=orientation_targets(units, layers, canvas, dev),
                           tracks=start.tracks(dev), drift=start.drift)
     if on_start is not None:   # the start is known: a live view shows it while the fields
-        on_start(frame(placement, unit_scale))   # and sprites are made
+        on_start(frame(placement, unit_scale))   # and sprites are made; a Stop from now on
+        abort = None                             # keeps it (the solver ends at its start)
     _check(abort)
     fields = [_fields(layer.region, grid, r_mean * rho) for layer in layers]
     _check(abort)
@@ -393,7 +394,9 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
 
     ``cancel()`` returning True ends the solve, which keeps its last step (none taken: the
     start). ``abort()`` (a Stop) returning True during the setup or before the first step
-    raises ``Cancelled``: there is no layout to keep. ``pins``: ``design.pins.Pin``s held
+    raises ``Cancelled``: there is no layout to keep; but once ``on_frame`` has shown the
+    start (a fresh, unpinned run shows it before the fields are made), a Stop keeps the
+    start as the layout. ``pins``: ``design.pins.Pin``s held
     in place (``layout.pins``); ``previous``: a ``warm.snapshot`` to start from (None: a
     fresh start)."""
     units = bind(df, layers)
@@ -408,7 +411,7 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
     result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
                    frame_every=frame_every, start_frame=early is None)
-    if result.iterations == 0 and abort is not None and abort():
+    if result.iterations == 0 and early is None and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")
     table = placements(units, layers, result)
     return units, result, table
