@@ -317,7 +317,7 @@ def test_an_untrusted_executed_notebook_shows_the_chart_as_an_image(lab):
 
     import nbformat
 
-    page = lab.page
+    page = lab.new_page()
     path = lab.server.root_dir / f"{lab.name}.ipynb"
     nbformat.write(nbformat.v4.new_notebook(cells=[
         nbformat.v4.new_code_cell(SETUP + "w = uw.UnitoPia(df.head(40), mark='circle', size='v', "
@@ -368,6 +368,7 @@ def test_screenshot_for_docs(lab):
     path = Path(SCREENSHOT)
     path.parent.mkdir(parents=True, exist_ok=True)
     root.screenshot(path=str(path))
+    page.set_viewport_size({"width": 1500, "height": 1100})   # the shared page's, for later tests
     from PIL import Image, ImageOps  # a white margin around the crop, as in a document
 
     with Image.open(path) as shot:
