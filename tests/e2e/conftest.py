@@ -3,9 +3,12 @@
 ``lab_server`` (session scope) starts one ``jupyter lab`` headless on 127.0.0.1 with a
 fixed free port (``port_retries=0``), a token, and temporary config, data, runtime and
 IPython directories, so nothing of the user's own Jupyter setup leaks in. It stops only
-the process it started. ``lab`` gives each test a fresh browser context on that server
-and a :class:`Lab` helper that opens a notebook written from a template, runs cells in
-its kernel and reads their outputs back; the test's kernel is shut down afterwards.
+the process it started. ``lab_page`` (session scope) is one browser page on that server
+with one notebook and its kernel: loading JupyterLab, starting a kernel and importing
+torch cost about 10 s a test on 2 cores. ``lab`` gives each test a :class:`Lab` helper
+that fills that notebook with the test's cells (the old ones deleted, so their views are
+gone), runs them in the shared kernel and reads their outputs back; page errors are
+collected per test, and a notebook a test opens itself has its kernel shut down after it.
 """
 
 from __future__ import annotations
@@ -195,26 +198,61 @@ async ([code, index]) => {
 }
 """
 
+SHARED_NOTEBOOK = "e2e-shared"
+
+# The path of the document the page shows, or null (JupyterLab not loaded yet).
+SHOWN_JS = """
+() => { const w = window.jupyterapp && jupyterapp.shell.currentWidget;
+        return (w && w.context && w.context.path) || null; }
+"""
+
+# Replaces every cell of the shown notebook by fresh code cells, in one change (a notebook
+# is never left empty, which would make JupyterLab add a cell of its own).
+REPLACE_CELLS_JS = """
+(cells) => {
+  const shared = jupyterapp.shell.currentWidget.content.model.sharedModel;
+  shared.transact(() => {
+    const old = shared.cells.length;
+    shared.insertCells(old, cells.map(source => ({cell_type: 'code', source})));
+    shared.deleteCellRange(0, old);
+  });
+}
+"""
+
 
 class Lab:
     """A notebook open in JupyterLab, driven through ``window.jupyterapp``."""
 
-    def __init__(self, server: LabServer, page, name: str):
-        self.server, self.page, self.name = server, page, name
+    def __init__(self, server: LabServer, page, name: str, notebook: str = SHARED_NOTEBOOK):
+        """``name``: the test's own, for files it writes; ``notebook``: the shared notebook."""
+        self.server, self.page, self.name, self.notebook = server, page, name, notebook
+        self.other_pages: list = []
+
+    def new_page(self):
+        """A second page on the server for this test (closed after it), its errors watched:
+        the shared page keeps its notebook and kernel."""
+        page = watched_page(self.page.context, self.errors)
+        self.other_pages.append(page)
+        return page
 
     def open(self, cells: list[str]) -> None:
-        """Writes the template notebook, opens it, waits for an idle kernel, runs every cell."""
-        path = self.server.root_dir / f"{self.name}.ipynb"
-        path.write_text(json.dumps(notebook_json(cells), indent=1))
-        self.page.goto(f"{self.server.url}/lab/tree/{path.name}?reset&token={self.server.token}")
+        """Puts ``cells`` in the shared notebook (opened from the template the first time, or
+        when the page shows another), waits for an idle kernel, runs every cell."""
+        path = self.server.root_dir / f"{self.notebook}.ipynb"
+        if self.page.evaluate(SHOWN_JS) == path.name:
+            self.page.evaluate(REPLACE_CELLS_JS, cells)
+        else:
+            path.write_text(json.dumps(notebook_json(cells), indent=1))
+            self.page.goto(f"{self.server.url}/lab/tree/{path.name}?reset&token={self.server.token}")
         self.page.wait_for_function(
-            """(name) => {
+            """([name, n]) => {
                 const w = window.jupyterapp && jupyterapp.shell.currentWidget;
                 const k = w && w.sessionContext && w.sessionContext.session && w.sessionContext.session.kernel;
-                return !!(w && w.context && w.context.path === name && w.context.isReady && w.content.widgets.length
+                return !!(w && w.context && w.context.path === name && w.context.isReady
+                          && w.content.widgets.length === n
                           && k && k.status === 'idle' && k.connectionStatus === 'connected');
             }""",
-            arg=path.name, timeout=KERNEL_TIMEOUT, polling=100,
+            arg=[path.name, len(cells)], timeout=KERNEL_TIMEOUT, polling=100,
         )
         for i in range(len(cells)):
             self.run_cell(i)
@@ -247,20 +285,39 @@ class Lab:
         return self.page.locator(f'[data-e2e-cell="{index}"]')
 
 
-@pytest.fixture
-def lab(lab_server, browser, request):
-    context = browser.new_context(viewport={"width": 1500, "height": 1100})
-    context.set_default_timeout(15_000)
+def watched_page(context, errors: list[str]):
+    """A new page of ``context`` whose uncaught errors are appended to ``errors``."""
     page = context.new_page()
-    errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.on("console", lambda msg: msg.type == "error" and errors.append(f"console: {msg.text}"))
+    return page
+
+
+@pytest.fixture(scope="session")
+def lab_page(lab_server, browser):
+    """(page, errors): one page for every JupyterLab test, and the uncaught errors in it."""
+    context = browser.new_context(viewport={"width": 1500, "height": 1100})
+    context.set_default_timeout(15_000)
+    errors: list[str] = []
+    page = watched_page(context, errors)
+    try:
+        yield page, errors
+    finally:
+        context.close()
+        lab_server.shutdown_sessions(SHARED_NOTEBOOK)
+
+
+@pytest.fixture
+def lab(lab_server, lab_page, request):
+    page, errors = lab_page
+    errors.clear()
     name = f"e2e-{request.node.name.replace('[', '-').replace(']', '')}-{secrets.token_hex(3)}"
     helper = Lab(lab_server, page, name)
     helper.errors = errors
     try:
         yield helper
     finally:
-        context.close()
+        for other in helper.other_pages:
+            other.close()
         lab_server.shutdown_sessions(name)
     assert not errors, f"uncaught errors in the page: {errors}"

@@ -312,20 +312,19 @@ def test_a_kernel_restart_mid_run_leaves_no_running_view_and_stop_does_not_throw
 # --- 6. an executed notebook reopened without trust ------------------------------------------
 
 def test_an_untrusted_executed_notebook_shows_the_chart_as_an_image(lab):
-    import subprocess
-    import sys
-
     import nbformat
+    from nbclient import NotebookClient
 
-    page = lab.page
+    page = lab.new_page()
     path = lab.server.root_dir / f"{lab.name}.ipynb"
-    nbformat.write(nbformat.v4.new_notebook(cells=[
+    nb = nbformat.v4.new_notebook(cells=[
         nbformat.v4.new_code_cell(SETUP + "w = uw.UnitoPia(df.head(40), mark='circle', size='v', "
                                           "iterations=30)\nw"),
-        nbformat.v4.new_code_cell("w.run(wait=True)\nw.status")]), path)
+        nbformat.v4.new_code_cell("w.run(wait=True)\nw.status")])
     env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2]), "OMP_NUM_THREADS": "1"}
-    subprocess.run([sys.executable, "-m", "jupyter", "nbconvert", "--to", "notebook", "--execute",
-                    "--inplace", str(path)], check=True, env=env, capture_output=True, timeout=300)
+    # as `jupyter nbconvert --execute --inplace` runs it, in this process (the command's start took ~3 s)
+    NotebookClient(nb, timeout=300, resources={"metadata": {"path": str(path.parent)}}).execute(env=env)
+    nbformat.write(nb, path)
     # not signed here: JupyterLab opens it untrusted and renders only safe types
     page.goto(f"{lab.server.url}/lab/tree/{path.name}?reset&token={lab.server.token}")
     first = page.locator(".jp-Cell").first.locator(".jp-OutputArea-output")
@@ -368,6 +367,7 @@ def test_screenshot_for_docs(lab):
     path = Path(SCREENSHOT)
     path.parent.mkdir(parents=True, exist_ok=True)
     root.screenshot(path=str(path))
+    page.set_viewport_size({"width": 1500, "height": 1100})   # the shared page's, for later tests
     from PIL import Image, ImageOps  # a white margin around the crop, as in a document
 
     with Image.open(path) as shot:
