@@ -128,6 +128,27 @@ class RadialShadow:
         return back[0, 0]
 
 
+def shadow_distance(xy: np.ndarray, sweep, centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """``(n,)`` signed distance (canvas px, negative inside) from ``xy (n, 2)`` to the shadow
+    that discs ``centers (k, 2)``, ``radii (k,)`` cast along ``sweep`` (``sweep_of``): each
+    disc swept down a raster axis without end, or radially in to the point that pulls it
+    (``cone_distance``); inf without discs."""
+    out = np.full(len(xy), np.inf)
+    if isinstance(sweep, Radial):
+        points = np.asarray(sweep.points, float)[sweep.pulling(centers), :2]
+        for c, r, p in zip(centers, radii, points):
+            np.minimum(out, cone_distance(xy, c, r, p), out=out)
+        return out
+    dim, reverse = sweep
+    d = np.zeros(2)
+    d[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
+    for c, r in zip(centers, radii):
+        rel = xy - c
+        along = np.maximum(rel @ d, 0.0)[:, None]
+        np.minimum(out, np.hypot(*(rel - along * d).T) - r, out=out)
+    return out
+
+
 def cone_distance(xy: np.ndarray, center: np.ndarray, r: float, point: np.ndarray) -> np.ndarray:
     """``(n,)`` signed distance (canvas px, negative inside) from ``xy (n, 2)`` to the radial
     shadow of the disc ``center (2,)``, ``r`` on ``point (2,)``: the convex hull of the disc
