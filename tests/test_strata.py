@@ -11,7 +11,7 @@ import torch
 import unitopia_widget as uw
 from test_start import below_envelope
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.strata import Radial, cone_distance
+from unitopia_widget.layout.strata import Radial, cone_distance, shadow_distance
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -163,3 +163,24 @@ def test_a_packed_layer_resting_on_an_emitted_one_stays_above_it():
     mean = table.groupby("layer")["y"].mean()
     assert mean["0"] > mean["1"]                           # 259 < 265 on main
     assert below_envelope(table, "0", "1") <= 0.05         # 6% on main
+
+
+def test_piles_grown_into_one_another_block_the_gaps_on_the_border_between_them():
+    # two points 60 px apart, a disc of ink either side of the border (x = 50) with a gap
+    # across it: each pile's sweep sees the other's ink within a band past its cell
+    h, w = 60, 100
+    yy, xx = torch.meshgrid(torch.arange(h) + 0.5, torch.arange(w) + 0.5, indexing="ij")
+    ink = (((xx - 45) ** 2 + (yy - 30) ** 2 <= 16) | ((xx - 57) ** 2 + (yy - 30) ** 2 <= 16)).float()
+    points = ((20.0, 30.0, 1.0), (80.0, 30.0, 1.0))
+    apart = Radial(points).on((h, w), rho=1.0, pad=0, device="cpu")(ink)
+    grown = Radial(points, band=6.0).on((h, w), rho=1.0, pad=0, device="cpu")(ink)
+    gap = [(30, 50), (30, 51)]                    # (row, column) either side of the border
+    assert all(apart[p] < 0.1 for p in gap)       # each side sees only its own cell's ink
+    assert all(grown[p] > 0.9 for p in gap)
+    assert grown[30, 10] < 0.1 and grown[10, 50] < 0.1 and grown[30, 90] < 0.1   # beyond, off
+    # the start's cones agree: the gap is taken once the band reaches the other disc
+    xy = np.array([[50.5, 30.5], [51.5, 30.5], [50.5, 10.5]])
+    discs, radii = np.array([[45.5, 30.5], [57.5, 30.5]]), np.array([4.0, 4.0])
+    assert (shadow_distance(xy, Radial(points), discs, radii)[:2] > 0).all()
+    assert (shadow_distance(xy, Radial(points, band=6.0), discs, radii) < 0).tolist() == \
+        [True, True, False]

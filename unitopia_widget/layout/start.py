@@ -65,10 +65,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             taken[key] = (np.zeros((0, 2)), np.zeros(0))
         region, r = regions[key], radius[idx]
         emitter = layer.emitter
-        sweep = sweep_of(layer.forces)
         # (N,) the marks of the layers it rests on (strata.py), placed before it
-        under = np.isin(units.layer, [j for j in order[:order.index(i)] if resting(layers, i, j)]) \
-            & (sweep is not None)
+        under = np.isin(units.layer, [j for j in order[:order.index(i)] if resting(layers, i, j)])
+        sweep = sweep_of(layer.forces, float(radius[under].max()) if under.any() else 0.0)
+        under &= sweep is not None
         if isinstance(emitter, CurveEmitter):
             arc = emitter.arc_positions(2 * r, ranks)
             s.center[idx] = emitter.curve.at(arc)
