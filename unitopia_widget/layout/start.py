@@ -19,7 +19,7 @@ from ..design.emitters import CurveEmitter, GridEmitter
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
-from .strata import shadow_distance, sweep_of
+from .strata import Radial, shadow, shadow_distance, sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
@@ -215,15 +215,21 @@ def resting(layers, a: int, b: int) -> bool:
 
 
 def _beyond(region: Region, sweep, centers: np.ndarray, radii: np.ndarray) -> Region:
-    """The part of ``region`` outside the shadow (``strata.shadow_distance``) of the discs
-    ``centers (k, 2)``, ``radii (k,)`` along ``sweep``; all of it when the shadow leaves none."""
-    ys, xs = np.nonzero(region.depth > 0)
-    free = shadow_distance((np.stack([xs, ys], 1) + 0.5) / region.rho, sweep, centers, radii) >= 0
-    if not free.any():
-        return region
-    inside = np.zeros(region.depth.shape, np.float32)
-    inside[ys[free], xs[free]] = 1.0
-    return Region(inside, region.rho)
+    """The part of ``region`` outside the shadow of the discs ``centers (k, 2)``, ``radii (k,)``
+    along ``sweep``, on its raster as the loss sees it (``strata.shadow``, ``Radial.on``);
+    all of it when the shadow leaves none."""
+    h, w = region.depth.shape
+    ink = np.zeros((h, w), np.float32)
+    for (x, y), r in zip(centers * region.rho, radii * region.rho):   # raster px
+        i0, i1 = max(int(y - r), 0), min(int(y + r) + 2, h)
+        j0, j1 = max(int(x - r), 0), min(int(x + r) + 2, w)
+        ii, jj = np.ogrid[i0:i1, j0:j1]
+        ink[i0:i1, j0:j1] = np.maximum(ink[i0:i1, j0:j1], (ii + 0.5 - y) ** 2 + (jj + 0.5 - x) ** 2 <= r * r)
+    ink = torch.from_numpy(ink)
+    swept = sweep.on((h, w), region.rho, 0, "cpu")(ink) if isinstance(sweep, Radial) \
+        else shadow(ink, *sweep)
+    free = (region.depth > 0) & (swept.numpy() < 0.5)
+    return Region(free.astype(np.float32), region.rho) if free.any() else region
 
 
 def _stand_in(layer, region: Region, r, ranks, canvas, taken, sweep, centers, radii) -> np.ndarray:
