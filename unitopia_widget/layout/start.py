@@ -3,9 +3,9 @@
 Layers are placed in block order, so a blocked layer starts where its
 blocking layers left room; a layer resting on others (``strata.py``) starts
 beyond their shadow, packed or on a grid, and sees an emitted layer where it
-will rest (a packed stand-in), not where it is emitted. Without an emitter, marks start packed on a
-hexagonal lattice at the spots the layer's forces pull hardest (or nearest
-the container's centre), the way they would settle.
+will rest (a packed stand-in), not where it is emitted. Without an emitter,
+marks start packed on a hexagonal lattice at the spots the layer's forces
+pull hardest (or nearest the container's centre), the way they would settle.
 """
 from __future__ import annotations
 
