@@ -1,5 +1,6 @@
-"""Strata under a point force: a layer that blocks on another rests outside it, in rings
-around the point, and never sifts into the gaps between its marks (issue 18, part 3)."""
+"""Strata: a layer that blocks on another rests on it, and never sifts into the gaps between
+its marks (issue 18, part 3): outside it in rings around a point force, above it under a
+downward one, emitted from a grid or packed on a layer poured from an emitter."""
 import math
 
 import numpy as np
@@ -8,7 +9,11 @@ import pytest
 import torch
 
 import unitopia_widget as uw
-from unitopia_widget.layout.strata import Radial, cone_distance
+from test_start import below_envelope
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.strata import Radial, cone_distance, shadow_distance
+
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 POINT = (200.0, 150.0)
 BINS = 360   # angle bins of the envelope: 1 degree, under a small mark's width at its radius
@@ -117,3 +122,65 @@ def test_rings_poured_in_turn_from_an_emitter_around_the_point_rest_outside_each
         chart.layer(str(j)).set(blocks=[str(j - 1)])
     table = chart.layout()
     assert max(inside_envelope(table, str(j - 1), str(j)) for j in (1, 2)) <= 0.05
+
+
+def start_table(chart) -> pd.DataFrame:
+    """The start of a chart (before solving) as a placements-like table: x, y, width
+    (footprint discs at the start scale), layer."""
+    units = engine.bind(chart.df, chart.layers)
+    problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu", scales=chart.scales)
+    center = problem.placement.transforms()[0].detach().numpy().astype(float)
+    width = 2 * np.sqrt(units.area / math.pi) * problem.group_scale[0]
+    return pd.DataFrame({"x": center[:, 0], "y": center[:, 1], "width": width,
+                         "layer": [chart.layers[i].name for i in units.layer]})
+
+
+@pytest.mark.parametrize("pull", ["down", "point"])
+def test_a_grid_emitted_layer_starts_and_rests_beyond_the_layer_it_blocks_on(pull):
+    # a packed pile, and a grid of small marks blocking on it: the grid once covered the pile
+    k = np.repeat([0, 1], [30, 60])
+    df = pd.DataFrame({"k": k, "v": np.where(k == 0, lognormal(90, 6, 1), 0.5)})
+    force = uw.DirectionalForce(90) if pull == "down" else uw.PointForce(*POINT)
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.rect(10, 10, 380, 280), forces=[force], iterations=300)
+    chart.layer("1").set(emitter=uw.GridEmitter(), blocks=["0"])
+    share = below_envelope if pull == "down" else inside_envelope
+    assert share(start_table(chart), "0", "1") == 0.0      # 45% (down), 48% (point) on main
+    assert share(chart.layout(), "0", "1") <= 0.05         # 30%, 15% on main
+
+
+def test_a_packed_layer_resting_on_an_emitted_one_stays_above_it():
+    # the lower layer poured from a curve at the top, the upper packed: once started at the
+    # floor, where the poured marks would rest, and stayed there
+    k = np.repeat([0, 1], [16, 32])
+    df = pd.DataFrame({"k": k, "v": lognormal(48, 6, 1) * np.where(k == 0, 1.0, 0.4)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open", fill=0.2,
+                     container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.DirectionalForce(90)], iterations=1000)
+    chart.layer("0").set(emitter=uw.CurveEmitter([(40, 30), (150, 20), (250, 40), (360, 30)]))
+    chart.layer("1").set(blocks=["0"])
+    table = chart.layout()
+    mean = table.groupby("layer")["y"].mean()
+    assert mean["0"] > mean["1"]                           # 259 < 265 on main
+    assert below_envelope(table, "0", "1") <= 0.05         # 6% on main
+
+
+def test_piles_grown_into_one_another_block_the_gaps_on_the_border_between_them():
+    # two points 60 px apart, a disc of ink either side of the border (x = 50) with a gap
+    # across it: each pile's sweep sees the other's ink within a band past its cell
+    h, w = 60, 100
+    yy, xx = torch.meshgrid(torch.arange(h) + 0.5, torch.arange(w) + 0.5, indexing="ij")
+    ink = (((xx - 45) ** 2 + (yy - 30) ** 2 <= 16) | ((xx - 57) ** 2 + (yy - 30) ** 2 <= 16)).float()
+    points = ((20.0, 30.0, 1.0), (80.0, 30.0, 1.0))
+    apart = Radial(points).on((h, w), rho=1.0, pad=0, device="cpu")(ink)
+    grown = Radial(points, band=6.0).on((h, w), rho=1.0, pad=0, device="cpu")(ink)
+    gap = [(30, 50), (30, 51)]                    # (row, column) either side of the border
+    assert all(apart[p] < 0.1 for p in gap)       # each side sees only its own cell's ink
+    assert all(grown[p] > 0.9 for p in gap)
+    assert grown[30, 10] < 0.1 and grown[10, 50] < 0.1 and grown[30, 90] < 0.1   # beyond, off
+    # the start's cones agree: the gap is taken once the band reaches the other disc
+    xy = np.array([[50.5, 30.5], [51.5, 30.5], [50.5, 10.5]])
+    discs, radii = np.array([[45.5, 30.5], [57.5, 30.5]]), np.array([4.0, 4.0])
+    assert (shadow_distance(xy, Radial(points), discs, radii)[:2] > 0).all()
+    assert (shadow_distance(xy, Radial(points, band=6.0), discs, radii) < 0).tolist() == \
+        [True, True, False]

@@ -299,9 +299,14 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
             chain[a] = torch.maximum(chain[a], chain[names.index(b)])
     # a layer under directional or point forces rests on the layers it blocks on (their
     # shadow, strata.py); others see their ink
-    sweeps = tuple(sweep_of(layer.forces) for layer in layers)
-    resting = torch.tensor([s is not None for s in sweeps], dtype=chain.dtype)[:, None]
+    resting = torch.tensor([sweep_of(layer.forces) is not None for layer in layers],
+                           dtype=chain.dtype)[:, None]
     rests, blocks = chain * resting, chain * (1 - resting)
+    # a point sweep sees past its cell by the largest footprint of the layers rested on
+    footprints = footprint_radius(units) * unit_scale
+    bands = [float(footprints[np.isin(units.layer, np.nonzero(rests[a].numpy())[0])].max())
+             if rests[a].any() else 0.0 for a in range(len(layers))]
+    sweeps = tuple(sweep_of(layer.forces, band) for layer, band in zip(layers, bands))
     sweeps = tuple(s.on(grid.shape, grid.rho, grid.pad, dev)
                    if isinstance(s, Radial) and rests[a].any() else s for a, s in enumerate(sweeps))
     # layers that share a container and do not block each other collide both ways

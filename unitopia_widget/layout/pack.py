@@ -21,7 +21,6 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .lattice import Region, hex_points
-from .strata import cone_distance
 
 SPREAD = 1.5          # footprint radii max / min above which a layer is packed by size
 ASPECT = 2.0          # box long / short side up to which a mark's disc stands for it
@@ -72,24 +71,10 @@ class Packing:
                 gap = np.hypot(*(self.points[near] - c).T) - r
                 self.clear[near] = np.minimum(self.clear[near], gap)
 
-    def stamp_swept(self, centers: np.ndarray, radii: np.ndarray, direction) -> None:
-        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` swept along the
-        unit vector ``direction`` without end: the room they shadow (see ``strata.shadow``)."""
-        if self.tree is None:
-            return
-        d = np.asarray(direction, dtype=float)
-        for c, r in zip(centers, radii):
-            rel = self.points - c
-            along = np.maximum(rel @ d, 0.0)[:, None]
-            np.minimum(self.clear, np.hypot(*(rel - along * d).T) - r, out=self.clear)
-
-    def stamp_cones(self, centers: np.ndarray, radii: np.ndarray, points: np.ndarray) -> None:
-        """Lower the clearances around discs ``centers (k, 2)``, ``radii (k,)`` swept radially
-        in to ``points (k, 2)``: each disc's shadow on its point (``strata.cone_distance``)."""
-        if self.tree is None:
-            return
-        for c, r, p in zip(centers, radii, points):
-            np.minimum(self.clear, cone_distance(self.points, c, r, p), out=self.clear)
+    def lower(self, distance: np.ndarray) -> None:
+        """Lower the clearances to ``distance (M,)`` per spot (canvas px, as ordered by
+        ``self.points``) where it is less: the room a shadow takes (``strata.shadow_distance``)."""
+        np.minimum(self.clear, distance, out=self.clear)
 
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
               largest_first: bool = True, roomiest: bool = False, later: float | None = None):

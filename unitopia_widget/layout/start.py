@@ -1,9 +1,11 @@
 """Starting positions and orientation targets, layer by layer, from the emitters.
 
 Layers are placed in block order, so a blocked layer starts where its
-blocking layers left room. Without an emitter, marks start packed on a
-hexagonal lattice at the spots the layer's forces pull hardest (or nearest
-the container's centre), the way they would settle.
+blocking layers left room; a layer resting on others (``strata.py``) starts
+beyond their shadow, packed or on a grid, and sees an emitted layer where it
+will rest (a packed stand-in), not where it is emitted. Without an emitter,
+marks start packed on a hexagonal lattice at the spots the layer's forces
+pull hardest (or nearest the container's centre), the way they would settle.
 """
 from __future__ import annotations
 
@@ -19,7 +21,7 @@ from ..design.emitters import CurveEmitter, GridEmitter
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .placement import DRIFT_DECAY
-from .strata import Radial, sweep_of
+from .strata import Radial, shadow, shadow_distance, sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
@@ -49,6 +51,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
               turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
     radius = footprint_radius(units) * scale
     regions, taken, packings = {}, {}, {}
+    rest, emitted = np.zeros((n, 2)), np.zeros(n, bool)   # where placed marks will rest
+    placed, keys = [], {}                                 # the layers placed, their containers
     for i in order:
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
@@ -63,6 +67,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             taken[key] = (np.zeros((0, 2)), np.zeros(0))
         region, r = regions[key], radius[idx]
         emitter = layer.emitter
+        # (N,) the marks of the layers it rests on (strata.py), placed before it
+        under = np.isin(units.layer, [j for j in order[:order.index(i)] if resting(layers, i, j)])
+        sweep = sweep_of(layer.forces, float(radius[under].max()) if under.any() else 0.0)
+        under &= sweep is not None
         if isinstance(emitter, CurveEmitter):
             arc = emitter.arc_positions(2 * r, ranks)
             s.center[idx] = emitter.curve.at(arc)
@@ -71,18 +79,23 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks,
                                       emitter.speed > 0))
         elif isinstance(emitter, GridEmitter):
-            spacing = grid_spacing(region, len(idx)) * 0.98
-            lattice = fitting_lattice(region, len(idx), spacing, min(float(r.mean()), spacing / 2))
+            # strata: the grid fills the room beyond the shadow of the layers it rests on
+            room = _beyond(region, sweep, rest[under], radius[under]) if under.any() else region
+            spacing = grid_spacing(room, len(idx)) * 0.98
+            lattice = fitting_lattice(room, len(idx), spacing, min(float(r.mean()), spacing / 2))
             s.center[idx] = emitter.place(lattice, ranks)
             s.drift[idx] = emitter.drift(s.center[idx]) * _room_ahead(
-                region, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
+                room, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
-                sweep = sweep_of(layer.forces)
-                if key in packings and sweep is not None:
+                if under.any() and key not in packings and emitted[under].any():
+                    # on an emitted layer: packed beyond where that layer will rest
+                    packings[key] = Packing(region, STEP * float(np.median(r)), float(radius.max()))
+                    packings[key].stamp(*taken[key])
+                if key in packings and under.any():
                     # strata: the layers it rests on take the room they shadow
-                    below = [j for j in order[:order.index(i)] if resting(layers, i, j)]
-                    _stamp_shadow(packings[key], sweep, s.center, radius, units.layer, below)
+                    packings[key].lower(shadow_distance(packings[key].points, sweep,
+                                                        rest[under], radius[under]))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas,
                                        _later(units, layers, order, i, radius))
@@ -90,6 +103,14 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
         if key in packings and emitter is not None:   # emitted marks take room from packed ones
             packings[key].stamp(s.center[idx], r)
+        rest[idx] = s.center[idx]
+        if emitter is not None and layer.forces and any(resting(layers, j, i) for j in order):
+            # the layers resting on it see it where it will rest, not where it is emitted
+            near = np.isin(units.layer, [j for j in placed if keys[j] == key])
+            rest[idx] = _stand_in(layer, region, r, ranks, canvas, (rest[near], radius[near]),
+                                  sweep, rest[under], radius[under])
+        emitted[idx], keys[i] = emitter is not None, key
+        placed.append(i)
         taken[key] = (np.concatenate([taken[key][0], s.center[idx]]), np.concatenate([taken[key][1], r]))
         speed = 1.0 if emitter is None else emitter.speed
         s.movable[idx] = speed > 0
@@ -195,20 +216,34 @@ def resting(layers, a: int, b: int) -> bool:
     return layers[b].name in seen
 
 
-def _stamp_shadow(packing, sweep, center, radius, layer_of, below) -> None:
-    """Lower ``packing``'s clearances by the shadow (``strata.py``) that the discs
-    ``center (N, 2)``, ``radius (N,)`` of the layers ``below`` cast along ``sweep``: swept
-    down a raster axis without end, or radially in to the point that pulls each."""
-    mine = np.isin(layer_of, below)
-    if isinstance(sweep, Radial):
-        owner = sweep.pulling(center[mine])
-        packing.stamp_cones(center[mine], radius[mine],
-                            np.asarray(sweep.points, float)[owner, :2])
-        return
-    dim, reverse = sweep
-    direction = np.zeros(2)
-    direction[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
-    packing.stamp_swept(center[mine], radius[mine], direction)
+def _beyond(region: Region, sweep, centers: np.ndarray, radii: np.ndarray) -> Region:
+    """The part of ``region`` outside the shadow of the discs ``centers (k, 2)``, ``radii (k,)``
+    along ``sweep``, on its raster as the loss sees it (``strata.shadow``, ``Radial.on``);
+    all of it when the shadow leaves none."""
+    h, w = region.depth.shape
+    ink = np.zeros((h, w), np.float32)
+    for (x, y), r in zip(centers * region.rho, radii * region.rho):   # raster px
+        i0, i1 = max(int(y - r), 0), min(int(y + r) + 2, h)
+        j0, j1 = max(int(x - r), 0), min(int(x + r) + 2, w)
+        ii, jj = np.ogrid[i0:i1, j0:j1]
+        ink[i0:i1, j0:j1] = np.maximum(ink[i0:i1, j0:j1], (ii + 0.5 - y) ** 2 + (jj + 0.5 - x) ** 2 <= r * r)
+    ink = torch.from_numpy(ink)
+    swept = sweep.on((h, w), region.rho, 0, "cpu")(ink) if isinstance(sweep, Radial) \
+        else shadow(ink, *sweep)
+    free = (region.depth > 0) & (swept.numpy() < 0.5)
+    return Region(free.astype(np.float32), region.rho) if free.any() else region
+
+
+def _stand_in(layer, region: Region, r, ranks, canvas, taken, sweep, centers, radii) -> np.ndarray:
+    """``(n, 2)`` where an emitted layer's marks ``r (n,)`` will rest: packed in data order at
+    the spots its forces pull hardest, around the marks ``taken`` (centres, radii) and beyond
+    the shadow of the discs ``centers (k, 2)``, ``radii (k,)`` it rests on (along ``sweep``)."""
+    pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
+    pack.stamp(*taken)
+    if len(centers):
+        pack.lower(shadow_distance(pack.points, sweep, centers, radii))
+    cost = spot_cost(layer, layer.region, canvas, pack.points)
+    return pack.place(r, cost, ranks, largest_first=False)[0]
 
 
 def _lengthwise(layer, units, idx) -> bool:

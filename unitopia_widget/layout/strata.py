@@ -10,7 +10,10 @@ is taken, and its marks cannot sift into the gaps between larger marks.
   ``a`` holds the most ink at that angle at radius ``r`` and beyond (everything inside the
   other layers' outer envelope around the point), so the layer rests outside them in
   rings. With several points each pixel is swept in to the point that pulls it (the nearest,
-  weighted by strength, as in ``forces.potential``), seeing only the ink that point pulls.
+  weighted by strength, as in ``forces.potential``), seeing the ink that point pulls and the
+  ink within a *band* past the border of its cell (the largest footprint radius of the layers
+  rested on): where piles grow into one another, the gaps on the border between them are
+  blocked as the gaps inside a pile are.
 
 A layer pulled by both kinds of force, or by none, sees the ink itself.
 """
@@ -30,15 +33,15 @@ RAY_SPACING = 2.0  # raster px between neighbouring rays at the farthest pixel, 
 MAX_RAYS = 2048    # rays per point at most (the spacing widens beyond, on huge rasters)
 
 
-def sweep_of(forces):
+def sweep_of(forces, band: float = 0.0):
     """The sweep of a layer pulled by ``forces``: ``(dim, reverse)`` for directional forces
-    (``shadow``'s raster axis nearest their sum), a ``Radial`` for point forces, None for
-    a mix of both or no pull."""
+    (``shadow``'s raster axis nearest their sum), a ``Radial`` for point forces (``band``:
+    see ``Radial``), None for a mix of both or no pull."""
     if not forces:
         return None
     if all(isinstance(f, PointForce) for f in forces):
         pull = tuple((f.x, f.y, f.strength) for f in forces if f.strength > 0)
-        return Radial(pull) if pull else None
+        return Radial(pull, band) if pull else None
     if not all(isinstance(f, DirectionalForce) for f in forces):
         return None
     vx = sum(f.strength * f.vector[0] for f in forces)
@@ -58,15 +61,31 @@ def shadow(ink: torch.Tensor, dim: int, reverse: bool) -> torch.Tensor:
 
 @dataclass(frozen=True)
 class Radial:
-    """The radial sweep of point forces ``points``: ``(x, y, strength)`` canvas px."""
+    """The radial sweep of point forces ``points``: ``(x, y, strength)`` canvas px; each
+    point's sweep sees the ink up to ``band`` canvas px past the border of its cell."""
 
     points: tuple
+    band: float = 0.0
+
+    def _pull(self, xy: np.ndarray) -> np.ndarray:
+        """``(n, K)`` each point's pull distance (strength-weighted) to ``xy (n, 2)`` canvas px."""
+        p = np.asarray(self.points, float)
+        dist = np.hypot(xy[:, None, 0] - p[None, :, 0], xy[:, None, 1] - p[None, :, 1])
+        return dist * p[None, :, 2]
 
     def pulling(self, xy: np.ndarray) -> np.ndarray:
         """``(n,)`` index of the point that pulls each of ``xy (n, 2)`` canvas px."""
-        p = np.asarray(self.points, float)
-        dist = np.hypot(xy[:, None, 0] - p[None, :, 0], xy[:, None, 1] - p[None, :, 1])
-        return np.argmin(dist * p[None, :, 2], axis=1)
+        return np.argmin(self._pull(xy), axis=1)
+
+    def seeing(self, xy: np.ndarray, reach=0.0) -> np.ndarray:
+        """``(n, K)`` bool: whether each point's sweep sees ``xy (n, 2)`` canvas px (or a disc
+        there of radius ``reach (n,)``): the point pulls it, or it lies within ``band`` px
+        past the border of the point's cell (the pull distances differ by twice that across
+        the border between two points)."""
+        pull = self._pull(xy)
+        near = pull - pull.min(1, keepdims=True) < 2 * (self.band + np.reshape(reach, (-1, 1))) \
+            * np.asarray(self.points, float)[None, :, 2]
+        return near | (np.arange(pull.shape[1])[None] == np.argmin(pull, axis=1)[:, None])
 
     def on(self, shape, rho: float, pad: int, device) -> "RadialShadow":
         """The sweep on a raster of ``shape (H, W)`` px, ``rho`` raster px per canvas px and
@@ -80,7 +99,8 @@ class RadialShadow:
     The ink is resampled onto rays from each point (``grid_sample``, ``RAY_STEP`` px apart
     along a ray, at most ``RAY_SPACING`` px apart across), swept in along each ray (a
     reversed ``cummax``), and resampled back: each pixel reads its own point's rays. Samples
-    on a point's rays that another point pulls read no ink. The sampling grids are made once.
+    on a point's rays that it does not see (``Radial.seeing``) read no ink. The sampling
+    grids are made once.
     """
 
     def __init__(self, radial: Radial, shape, rho: float, pad: int, device):
@@ -102,7 +122,7 @@ class RadialShadow:
             v = cv + torch.sin(angle)[:, None] * radius[None]
             grids.append(torch.stack([u / max(w - 1, 1) * 2 - 1, v / max(h - 1, 1) * 2 - 1], -1))
             canvas = np.stack([(u.numpy() - pad + 0.5) / rho, (v.numpy() - pad + 0.5) / rho], -1)
-            owned.append(torch.from_numpy(radial.pulling(canvas.reshape(-1, 2)) == k)
+            owned.append(torch.from_numpy(radial.seeing(canvas.reshape(-1, 2))[:, k])
                          .reshape(u.shape))
         self.to_rays = torch.cat(grids)[None].float().to(device)              # (1, K rays, n_r, 2)
         self.owned = torch.cat(owned)[None, None].float().to(device)         # (1, 1, K rays, n_r)
@@ -126,6 +146,34 @@ class RadialShadow:
         back = F.grid_sample(swept, self.to_pixels.to(ink.dtype), mode="bilinear",
                              padding_mode="border", align_corners=True)
         return back[0, 0]
+
+
+def shadow_distance(xy: np.ndarray, sweep, centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """``(n,)`` signed distance (canvas px, negative inside) from ``xy (n, 2)`` to the shadow
+    that discs ``centers (k, 2)``, ``radii (k,)`` cast along ``sweep`` (``sweep_of``): each
+    disc swept down a raster axis without end, or radially in to the point that pulls it
+    (``cone_distance``), and in to each other point that sees it within its cell
+    (``Radial.seeing``); inf without discs."""
+    out = np.full(len(xy), np.inf)
+    if isinstance(sweep, Radial):
+        points = np.asarray(sweep.points, float)[:, :2]
+        owner, seen = sweep.pulling(centers), sweep.seeing(centers, radii)
+        cell = sweep.pulling(xy) if seen.sum() > len(centers) else None
+        for c, r, k, sees in zip(centers, radii, owner, seen):
+            np.minimum(out, cone_distance(xy, c, r, points[k]), out=out)
+            for j in np.nonzero(sees)[0]:
+                if j != k:
+                    cone = cone_distance(xy, c, r, points[j])
+                    np.minimum(out, np.where(cell == j, cone, np.inf), out=out)
+        return out
+    dim, reverse = sweep
+    d = np.zeros(2)
+    d[1 - dim] = -1.0 if reverse else 1.0   # raster dim 0 is y, dim 1 is x
+    for c, r in zip(centers, radii):
+        rel = xy - c
+        along = np.maximum(rel @ d, 0.0)[:, None]
+        np.minimum(out, np.hypot(*(rel - along * d).T) - r, out=out)
+    return out
 
 
 def cone_distance(xy: np.ndarray, center: np.ndarray, r: float, point: np.ndarray) -> np.ndarray:
