@@ -343,6 +343,16 @@ def design_lettering():
     return dict(df=df, mark=kinds, size="v", margin=0.1, container=c, boundary="closed"), [c]
 
 
+def design_ties_margin():
+    """400 upright raindrops of three tied sizes (1, 5 and 20; 205, 148 and 47 rows) with a
+    margin of 0.2 in the necked container: the median mark is the smallest, so the wide
+    margin bands of the largest border room a checker counts as empty."""
+    df = pd.DataFrame({"v": np.repeat([1.0, 5.0, 20.0], [205, 148, 47])})
+    c = neck_container()
+    return dict(df=df, mark=icon("raindrop"), size="v", margin=0.2, container=c,
+                boundary="closed"), [c]
+
+
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
            "bags-independent": lambda: design_bags("independent"), "hair": design_hair,
            "strands": design_strands, "strands-range": lambda: design_strands((20, 80)),
@@ -351,7 +361,7 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "rings": design_rings, "faint-png": design_faint_png,
            "strata": design_strata, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
            "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
-           "lettering": design_lettering}
+           "lettering": design_lettering, "ties-margin": design_ties_margin}
 
 
 def build(name):

@@ -364,10 +364,18 @@ def _pyramid(mark, device: str) -> list:
 
 
 def _reach(units: Units) -> np.ndarray:
-    """``(N,)`` at scale 1: the ink's area-equivalent radius less the margin band around it
-    (the room the controller looks for is measured from the footprints)."""
-    band = (footprint(units.margin) - 1) * np.minimum(units.half_w, units.half_h)
-    return np.maximum(np.sqrt(units.area / math.pi) - band, 0.0)
+    """``(N,)`` at scale 1: the ink's area-equivalent radius less the margin band the room
+    is seen through (the room the controller looks for is measured from the footprints, a
+    checker measures it from the ink). Bands grow with their marks, and a mark borders room
+    in proportion to its size: the band is its layer's mean, weighted by the marks' short
+    half sides, so that the wide bands of a few large marks are not hidden by the median's."""
+    side = np.minimum(units.half_w, units.half_h)
+    band = (footprint(units.margin) - 1) * side
+    seen = np.zeros_like(band)
+    for layer in np.unique(units.layer):
+        mine = units.layer == layer
+        seen[mine] = float((band[mine] * side[mine]).sum() / max(float(side[mine].sum()), 1e-9))
+    return np.maximum(np.sqrt(units.area / math.pi) - seen, 0.0)
 
 
 def _fields(container, grid: RasterGrid, falloff: float):
