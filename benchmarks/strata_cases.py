@@ -25,6 +25,7 @@ import torch
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
 import unitopia_widget as uw   # noqa: E402
+from envelope import below_envelope   # noqa: E402
 from ink import ink_metrics    # noqa: E402
 
 BINS = 360   # angle bins of the radial envelope
@@ -34,18 +35,6 @@ def lognormal(n: int, spread: float, seed: int) -> np.ndarray:
     """n lognormal values rescaled so that max / min is exactly ``spread``."""
     logs = np.log(np.random.default_rng(seed).lognormal(0.0, 1.0, n))
     return np.exp((logs - logs.min()) / np.ptp(logs) * math.log(spread))
-
-
-def below(table, lower: str, upper: str) -> float:
-    """Share of ``upper``'s centres below the upper envelope of ``lower``'s discs."""
-    xs = np.arange(0.0, 400.0, 2.0)
-    top = np.full(len(xs), np.inf)
-    for x, y, w in table[table["layer"] == lower][["x", "y", "width"]].to_numpy():
-        near = np.abs(xs - x) < w / 2
-        top[near] = np.minimum(top[near], y - np.sqrt((w / 2) ** 2 - (xs[near] - x) ** 2))
-    up = table[table["layer"] == upper]
-    column = np.abs(xs[None] - up["x"].to_numpy()[:, None]).argmin(1)
-    return float(np.mean(up["y"].to_numpy() > top[column]))
 
 
 def inside(table, lower: str, upper: str, point) -> float:
@@ -88,7 +77,7 @@ def cases():
         chart = uw.Chart(df, size="v", by="k", color="k", forces=[force], iterations=300, **box)
         chart.layer("1").set(emitter=uw.GridEmitter(), blocks=["0"])
         if pull == "down":
-            yield "grid-down", chart, lambda t: below(t, "0", "1"), lambda g: -g["y"].mean()
+            yield "grid-down", chart, lambda t: below_envelope(t, "0", "1"), lambda g: -g["y"].mean()
         else:
             yield ("grid-point", chart, lambda t: inside(t, "0", "1", (200, 150)),
                    lambda g: np.hypot(g["x"] - 200, g["y"] - 150).mean())
@@ -98,7 +87,7 @@ def cases():
                      iterations=1000, **box)
     chart.layer("0").set(emitter=uw.CurveEmitter([(40, 30), (150, 20), (250, 40), (360, 30)]))
     chart.layer("1").set(blocks=["0"])
-    yield "packed-on-poured", chart, lambda t: below(t, "0", "1"), lambda g: -g["y"].mean()
+    yield "packed-on-poured", chart, lambda t: below_envelope(t, "0", "1"), lambda g: -g["y"].mean()
     for gap in (50, 70, 90):
         points = np.array([(200 - gap / 2, 100.0), (200 + gap / 2, 100.0)])
         k = np.repeat(np.arange(3), [12, 36, 108])

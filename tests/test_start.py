@@ -8,6 +8,7 @@ import torch
 from scipy.spatial.distance import pdist, squareform
 
 import unitopia_widget as uw
+from envelope import below_envelope
 from ink import ink_metrics
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.lattice import Region
@@ -91,19 +92,6 @@ def test_blocked_layers_without_an_emitter_start_and_end_stacked_in_two_piles():
     assert end_y["0"] > end_y["1"] > end_y["2"]
     lefts = table[table["x"] < 200]["layer"].nunique()
     assert lefts == 3 and table[table["x"] > 210]["layer"].nunique() == 3   # both piles stacked
-
-
-def below_envelope(table, lower: str, upper: str) -> float:
-    """Share of layer ``upper``'s discs whose centre lies below the upper envelope (the
-    topmost ink, column by column) of layer ``lower``'s discs."""
-    xs = np.arange(0.0, 400.0, 2.0)
-    top = np.full(len(xs), np.inf)
-    for x, y, w in table[table["layer"] == lower][["x", "y", "width"]].to_numpy():
-        near = np.abs(xs - x) < w / 2
-        top[near] = np.minimum(top[near], y - np.sqrt((w / 2) ** 2 - (xs[near] - x) ** 2))
-    up = table[table["layer"] == upper]
-    column = np.abs(xs[None, :] - up["x"].to_numpy()[:, None]).argmin(1)
-    return float(np.mean(up["y"].to_numpy() > top[column]))
 
 
 def test_stacked_layers_rest_in_strata_though_the_last_are_four_times_smaller():

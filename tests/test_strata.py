@@ -9,7 +9,7 @@ import pytest
 import torch
 
 import unitopia_widget as uw
-from test_start import below_envelope
+from envelope import below_envelope
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.strata import Radial, cone_distance, shadow_distance
 
