@@ -55,6 +55,23 @@ def test_packing_puts_spread_discs_largest_first_into_the_gaps_without_overlap()
     assert spot[-10:].max() > 2 * spot[:5].max()                      # the small ones around
 
 
+def test_a_packing_asked_only_whether_all_fit_stops_at_the_first_miss():
+    inside = np.zeros((100, 100), np.float32)
+    inside[10:90, 10:90] = 1.0
+    radius = np.full(40, 12.0)                # 40 discs of radius 12 cannot fit in 80 x 80
+    cost = lambda pack: np.zeros(len(pack.points))   # noqa: E731
+    full = Packing(Region(inside, 1.0), 3.0, 12.0)
+    center, fitted = full.place(radius, cost(full), np.arange(40))
+    missed = Packing(Region(inside, 1.0), 3.0, 12.0)
+    early, answer = missed.place(radius, cost(missed), np.arange(40), until_miss=True)
+    assert not fitted and not answer
+    placed = int(np.flatnonzero(~early.any(axis=1))[0])   # the first disc left unplaced
+    assert 0 < placed < 40
+    np.testing.assert_array_equal(early[:placed], center[:placed])   # the same spots till then
+    assert not early[placed:].any() and center[placed:].any()
+    assert (missed.clear == missed.depth).all()          # its clearances are left untouched
+
+
 def test_only_compact_marks_with_spread_sizes_are_packed_by_size():
     half = np.ones(3)
     assert packable(np.array([1.0, 2.0, 3.0]), half, half)

@@ -77,7 +77,8 @@ class Packing:
         np.minimum(self.clear, distance, out=self.clear)
 
     def place(self, radii: np.ndarray, cost: np.ndarray, ranks: np.ndarray,
-              largest_first: bool = True, roomiest: bool = False, later: float | None = None):
+              largest_first: bool = True, roomiest: bool = False, later: float | None = None,
+              until_miss: bool = False):
         """Centres ``(n, 2)`` for discs ``radii (n,)``, each at the cheapest spot that holds
         it (``cost (M,)`` per spot, as ordered by ``self.points``), else at the roomiest
         spot; and whether all fitted. ``largest_first``: by decreasing size (``ranks`` break
@@ -85,6 +86,8 @@ class Packing:
         spot farthest from the discs placed (the edge counting as a mirror: twice its
         distance), which spreads marks too few to fill a container evenly over it.
         ``later``: the largest disc radius later calls place here (default ``self.reach``).
+        ``until_miss``: return ``(centers so far, False)`` at the first disc that fits
+        nowhere, the clearances left as they were (a scale search needs only the answer).
         Each disc lowers the clearances only as far as they matter: up to the largest disc
         still to place, of this call's and ``later`` (one huge mark of a heavy tail would
         otherwise make every small disc's update span the whole container)."""
@@ -109,6 +112,8 @@ class Packing:
             else:
                 k = _first(clear, r, dead, -1)
             if k < 0:
+                if until_miss:   # the caller asks only whether all fit
+                    return centers, False
                 k, fitted = int(np.argmax(clear)), False
             centers[i] = points[k]
             if roomiest:

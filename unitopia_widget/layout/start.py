@@ -155,7 +155,7 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                 ranks = emission_ranks(units.order[units.layer == i])
                 cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
                 later = _later(units, layers, members, i, radius) * scale
-                if not pack.place(r, cost, ranks, later=later)[1]:
+                if not pack.place(r, cost, ranks, later=later, until_miss=True)[1]:
                     return False
             return True
 
