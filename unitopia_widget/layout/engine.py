@@ -277,9 +277,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
     arrange.snap(start, units, layers, canvas, unit_scale, lambda layer, pts: spot_cost(
         layer, layer.region, canvas, pts), rho_start)
-    anchor = positions.anchors(units, layers, canvas, footprint_radius(units) * unit_scale, rho_start)
+    footprints = footprint_radius(units) * unit_scale   # (N,) canvas px at the start scale
+    anchor = positions.anchors(units, layers, canvas, footprints, rho_start)
     if anchor is not None:
-        positions.dodge(start.center, units, layers, canvas, footprint_radius(units) * unit_scale,
+        positions.dodge(start.center, units, layers, canvas, footprints,
                         *anchor[:3], lambda idx: emission_ranks(units.order[idx]), rho_start)
         anchor = positions.Anchor(*anchor, radius=r_mean, device=dev, band=units.band)
     placement = Placement(start.center, start.angle, start.movable, start.turnable, dev,
@@ -303,7 +304,6 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                            dtype=chain.dtype)[:, None]
     rests, blocks = chain * resting, chain * (1 - resting)
     # a point sweep sees past its cell by the largest footprint of the layers rested on
-    footprints = footprint_radius(units) * unit_scale
     bands = [float(footprints[np.isin(units.layer, np.nonzero(rests[a].numpy())[0])].max())
              if rests[a].any() else 0.0 for a in range(len(layers))]
     sweeps = tuple(sweep_of(layer.forces, band) for layer, band in zip(layers, bands))
@@ -409,9 +409,8 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     start). ``abort()`` (a Stop) returning True during the setup or before the first step
     raises ``Cancelled``: there is no layout to keep; but once ``on_frame`` has shown the
     start (a fresh, unpinned run shows it before the fields are made), a Stop keeps the
-    start as the layout. ``pins``: ``design.pins.Pin``s held
-    in place (``layout.pins``); ``previous``: a ``warm.snapshot`` to start from (None: a
-    fresh start)."""
+    start as the layout. ``pins``: ``design.pins.Pin``s held in place (``layout.pins``);
+    ``previous``: a ``warm.snapshot`` to start from (None: a fresh start)."""
     units = bind(df, layers)
     _check(abort)
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)

@@ -7,8 +7,9 @@ sprite resized and rotated, centred on its place (the SVG export's transform: th
 mark's box centred on (x, y), rotated clockwise, scaled to its size).
 
 ``Compositor`` pastes the sprites for the PNG export, the settling's film and the
-story's film alike. ``chart_png`` draws a laid-out chart so: the page under the units (background,
-outlines), the units, then the overlay (legend, title, caption). resvg builds one
+story's film alike. ``chart_png`` draws a laid-out chart so: the page under the
+units (background, outlines), the units, then the overlay (legend, title,
+caption). resvg builds one
 node tree per ``<use>`` and refuses a document past its node limit, and its time
 grows with the nodes: 20,000 units of a 51-element icon drawn as one SVG fail,
 composited they take one small render.
