@@ -160,6 +160,20 @@ def design_strata():
     return w, [c]
 
 
+def design_strata_alike():
+    """Four layers blocked in turn in one wide trapezoid under a downward force, largest
+    first, 20/40/60/80 marks, each layer 2x smaller (linear) than the one before but alike
+    within itself (a 3x spread of areas, too little to be packed by size)."""
+    k = np.repeat(np.arange(4), [20, 40, 60, 80])
+    df = pd.DataFrame({"year": k, "v": lognormal(200, 3, 41) * 4.0 ** -k})
+    c = uw.Container.polygon([(100, 40), (700, 40), (620, 570), (180, 570)])
+    w = uw.UnitoPia(df, mark="circle", size="v", by="year", container=c, canvas=(W, H),
+                    forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
+    for j in range(1, 4):
+        w.layer(str(j)).set(blocks=[str(j - 1)])
+    return w, [c]
+
+
 def design_rings_strata():
     """Three layers blocked in turn around a point force, largest marks first, each layer's
     linear size 2x below the last (4x from first to last), enough marks to ring the one
@@ -359,7 +373,7 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "raindrops": design_raindrops, "flowers": design_flowers, "seesaw": design_seesaw,
            "grid90": design_grid, "rects": design_rects, "suns": design_suns,
            "rings": design_rings, "faint-png": design_faint_png,
-           "strata": design_strata, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
+           "strata": design_strata, "strata-alike": design_strata_alike, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
            "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
            "lettering": design_lettering, "ties-margin": design_ties_margin}
 

@@ -149,6 +149,22 @@ def test_a_grid_emitted_layer_starts_and_rests_beyond_the_layer_it_blocks_on(pul
     assert share(chart.layout(), "0", "1") <= 0.05         # 30%, 15% on main
 
 
+def test_layers_of_alike_sizes_start_each_above_the_one_it_blocks_on():
+    # each layer's sizes too alike to be packed by size (they start on a lattice): the third
+    # and fourth layers once started on the floor, under the first
+    k = np.repeat(np.arange(4), 30)
+    df = pd.DataFrame({"k": k, "v": lognormal(120, 2, 3) * 4.0 ** -k})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.polygon([(50, 20), (350, 20), (310, 285), (90, 285)]),
+                     forces=[uw.DirectionalForce(90)])
+    for j in (1, 2, 3):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    start = start_table(chart)
+    assert [below_envelope(start, str(j - 1), str(j)) for j in (1, 2, 3)] == [0.0, 0.0, 0.0]
+    mean = start.groupby("layer")["y"].mean()
+    assert mean["0"] > mean["1"] > mean["2"] > mean["3"]
+
+
 def test_a_packed_layer_resting_on_an_emitted_one_stays_above_it():
     # the lower layer poured from a curve at the top, the upper packed: once started at the
     # floor, where the poured marks would rest, and stayed there

@@ -88,8 +88,9 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                 room, s.center[idx], emitter.drift(s.center[idx]), r)[:, None]
         else:
             try:
-                if under.any() and key not in packings and emitted[under].any():
-                    # on an emitted layer: packed beyond where that layer will rest
+                if under.any() and key not in packings:
+                    # on other layers (emitted, or started on a lattice): packed beyond
+                    # where they will rest, out of the shadow they cast
                     packings[key] = Packing(region, STEP * float(np.median(r)), float(radius.max()))
                     packings[key].stamp(*taken[key])
                 if key in packings and under.any():
