@@ -81,7 +81,12 @@ class BestLoss(Rule):
     name = "best-loss"
 
     def __call__(self, s):
-        if s.loss_value < s.best * (1 - 1e-3) - 1e-6 or (s.travelling and s.loss_value > 1.5 * s.best):
+        # tolerances relative to the loss's magnitude: with forces the loss is negative
+        # (their potential), and a share of it must not turn a rise into an improvement
+        first = not math.isfinite(s.best)
+        improved = first or s.loss_value < s.best - 1e-3 * abs(s.best) - 1e-6
+        piled = not first and s.travelling and s.loss_value > s.best + 0.5 * abs(s.best)
+        if improved or piled:
             s.best, s.since_best = s.loss_value, 0
         else:
             s.since_best += 1
