@@ -11,6 +11,7 @@ from scipy.spatial import cKDTree
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.scales import Scales
+from unitopia_widget.layout.schedule import BestLoss
 from unitopia_widget.layout.solver import Problem, Result, solve
 
 CX, CY, R = 400.0, 250.0, 200.0
@@ -250,11 +251,9 @@ def test_room_lets_margins_poke_out_before_the_scale_stops_growing():
 def test_the_settle_counts_a_loss_no_better_by_a_thousandth_of_its_size_as_no_improvement(sign):
     # with forces the loss is negative; a share of a negative best once turned a small rise
     # into an improvement, so piles never settled and ran to the iteration cap
-    from unitopia_widget.layout.schedule import BestLoss
     s = SimpleNamespace(best=sign * 1.0, since_best=5, travelling=False, loss_value=0.0)
     for loss, since in ((sign * 1.0 + 2e-4, 6), (sign * 1.0 - 2e-4, 7), (sign * 1.0 - 5e-3, 0)):
         s.loss_value = loss
         BestLoss()(s)
         assert s.since_best == since
     assert s.best == sign * 1.0 - 5e-3
-

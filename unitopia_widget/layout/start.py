@@ -51,8 +51,8 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
               turnable=np.zeros(n, bool), drift=np.zeros((n, 2)))
     radius = footprint_radius(units) * scale
     regions, taken, packings = {}, {}, {}
-    rest, emitted = np.zeros((n, 2)), np.zeros(n, bool)   # where placed marks will rest
-    placed, keys = [], {}                                 # the layers placed, their containers
+    rest = np.zeros((n, 2))      # where placed marks will rest
+    placed, keys = [], {}        # the layers placed, their containers
     for i in order:
         layer = layers[i]
         idx = np.nonzero(units.layer == i)[0]
@@ -110,7 +110,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
             near = np.isin(units.layer, [j for j in placed if keys[j] == key])
             rest[idx] = _stand_in(layer, region, r, ranks, canvas, (rest[near], radius[near]),
                                   sweep, rest[under], radius[under])
-        emitted[idx], keys[i] = emitter is not None, key
+        keys[i] = key
         placed.append(i)
         taken[key] = (np.concatenate([taken[key][0], s.center[idx]]), np.concatenate([taken[key][1], r]))
         speed = 1.0 if emitter is None else emitter.speed
