@@ -211,3 +211,15 @@ def test_repeated_calls_on_the_same_terms_do_not_leak_coverage():
         n_layers=2, size=4, inside=[[1] * 4, [1] * 4], w_fill=0.2, blocks=[[0, 0], [1, 0]]))
     assert again == fresh and torch.equal(g_again, g_fresh)
     assert again == pytest.approx(0.2 + 0.2 * (8 - 1.0), abs=1e-12)   # excess + w_fill * gap
+
+
+@pytest.mark.parametrize("blocks", [None, [[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, 0], [0, 0, 0], [0, 1, 0]]])
+def test_the_units_shares_of_the_overlap_add_up_to_each_layers_overlap(blocks):
+    values, index, layer, terms = random_case(5, 3, 10, 50, blocks)
+    owner = torch.arange(50) % 7 * 3 + layer          # 21 units, each in one layer
+    unit_layer = torch.arange(21) % 3
+    CanvasLoss.apply(values, index, layer, terms)
+    per_unit = terms.unit_overlap(values, index, owner, unit_layer, 21)
+    per_layer = torch.zeros(3, dtype=D).index_add_(0, unit_layer, per_unit)
+    assert torch.allclose(per_layer, terms.sums[0], rtol=1e-12, atol=1e-12)
+    assert bool((per_unit > 0).any())

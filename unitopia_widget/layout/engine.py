@@ -70,6 +70,13 @@ class Units:
         return np.array([m.fill_fraction for m in self.sprites])[self.sprite]
 
     @property
+    def ink_share(self) -> np.ndarray:
+        """``(N,)`` ink area / footprint area of each unit's mark: 1 but for a mark whose
+        footprint fills the holes its ink encloses (a ring: its ink over its filled disc)."""
+        return np.array([min(m.as_footprint("ink").fill_fraction / m.fill_fraction, 1.0)
+                         if m.solid else 1.0 for m in self.sprites])[self.sprite]
+
+    @property
     def box_size(self) -> np.ndarray:
         """``(N, 2)`` box (w, h) of each unit's mark, in the mark's own units."""
         return np.array([m.box_size for m in self.sprites]).reshape(-1, 2)[self.sprite]
@@ -343,7 +350,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
-                   reach=_reach(units),
+                   reach=_reach(units), ink_share=units.ink_share,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor)
 
@@ -360,7 +367,11 @@ def _pyramid(mark, device: str) -> list:
     alpha = mark.silhouette(SPRITE_SIDE)
     # a sun's rays stay thin lines when its disc is filled: the ink says whether it is drawn in lines
     ink = mark.as_footprint("ink").silhouette(SPRITE_SIDE) if mark.solid else alpha
-    return sprite_pyramid(alpha, device, keep_thin=is_thin(ink))
+    # a hollow mark (its footprint fills holes in its ink) keeps its coarse levels at least as
+    # wide as its finest, as lines do: a contact a fraction of a raster pixel deep, little of
+    # a solid mark's area, is much of a ring's ink, and the wider levels keep it in the gap
+    hollow = float(alpha.sum()) > float(ink.sum())
+    return sprite_pyramid(alpha, device, keep_thin=is_thin(ink) or hollow)
 
 
 def _reach(units: Units) -> np.ndarray:

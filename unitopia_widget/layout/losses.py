@@ -90,6 +90,22 @@ class CanvasTerms:
                 obstacle[a] += swept.reshape(-1)
         return obstacle
 
+    def unit_overlap(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
+                     layer: torch.Tensor, n_units: int) -> torch.Tensor:
+        """``(N,)`` each unit's share of the overlap the loss counts, in raster px^2 of alpha:
+        a sample's alpha times ``relu(T - 1) / T`` at its pixel, ``T = C + O`` of its layer
+        (as the forward has it). ``values``, ``index``, ``owner`` ``(M,)`` as from
+        ``render_samples``; ``layer (N,)`` each unit's layer (long)."""
+        n_layers, size = self.penalty.shape
+        sample_layer = layer[owner]
+        flat = index.long() + sample_layer * size
+        own = torch.zeros(n_layers * size, dtype=values.dtype, device=values.device) \
+            .index_add_(0, flat, values).view(n_layers, size)
+        total = own + self.obstacles(own) if n_layers > 1 and self.has_obstacles else own
+        at = total.reshape(-1)[flat]
+        over = values * torch.relu(at - 1.0) / at.clamp_min(1e-6)
+        return torch.zeros(n_units, dtype=values.dtype, device=values.device).index_add_(0, owner, over)
+
     @property
     def stats(self) -> dict:
         """Shares of the last forward (reads the sums back): overlap and outside of the

@@ -42,9 +42,10 @@ def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32,
     ``alpha`` is ``(h, w)`` in [0, 1] with long side ``SPRITE_SIDE``. Returns
     tensors ``(1, 1, h_l, w_l)``, finest first, each level half the previous
     (area averaging keeps the rendered area exact), down to a long side of 4.
-    ``keep_thin`` (for marks drawn with thin lines, see ``is_thin``) keeps a
-    line at least one texel wide and opaque on every level, so thin strokes
-    that cross still collide instead of averaging away.
+    ``keep_thin`` (for marks drawn with thin lines, see ``is_thin``, and
+    hollow ones) keeps a line at least one texel wide and opaque on every level,
+    so thin strokes that cross still collide instead of averaging away; an edge
+    then lies up to half a texel out, so contacts keep that clear of the ink.
     """
     level = torch.as_tensor(np.ascontiguousarray(alpha), dtype=dtype, device=device)[None, None]
     levels = [level]

@@ -265,11 +265,13 @@ class Decay(Rule):
 
 class Legalize(Rule):
     """At the end of a polish: a layout that still overlaps more than ``final_overlap`` or
-    pokes out more than ``final_outside`` gives up a little scale (open scales faster: no
-    room is lost, and forces keep their piles pressed), thin marks uncross, and a shorter
-    polish runs again, up to ``legalize_rounds`` (``legalize_rounds_open`` without a
-    controlled scale); otherwise the layout is done. ``max_iterations`` caps it all.
-    Needed by data-true sizes that never push a mark out, open piles and spiky marks."""
+    pokes out more than ``final_outside``, or one of whose units has more than
+    ``final_unit_overlap`` of its ink overlapped (``unit_crowding``), gives up a little scale
+    (open scales faster: no room is lost, and forces keep their piles pressed), thin marks
+    uncross, and a shorter polish runs again, up to ``legalize_rounds``
+    (``legalize_rounds_open`` without a controlled scale); otherwise the layout is done.
+    ``max_iterations`` caps it all. Needed by data-true sizes that never push a mark out,
+    open piles, spiky marks, and hollow ones (whose contacts are a large share of their ink)."""
 
     name = "legalize"
     phase = "polish"
@@ -278,7 +280,8 @@ class Legalize(Rule):
         p, ctl = s.p, s.ctl
         if not (s.polish_left <= 0 or s.iteration >= p.max_iterations):
             return False
-        bad = (s.overlap_g > p.final_overlap) | (s.outside_g > p.final_outside)
+        bad = (s.overlap_g > p.final_overlap) | (s.outside_g > p.final_outside) \
+            | (unit_crowding(s) > p.final_unit_overlap)
         limit = p.legalize_rounds if ctl.free.any() else p.legalize_rounds_open
         if bad.any() and s.rounds < limit and s.iteration < p.max_iterations:
             s.rounds += 1
@@ -289,6 +292,25 @@ class Legalize(Rule):
             return True
         s.done = True
         return False
+
+
+def unit_crowding(s: State) -> np.ndarray:
+    """``(G,)`` per scale group, the largest share of one hollow unit's ink that the loss
+    counts as overlapped: its overlapped footprint alpha over its drawn alpha times its
+    ``ink_share``. A contact a fraction of a raster pixel deep is little of all the ink but
+    much of a small ring's, and the contract for hollow marks is per unit (solid marks are
+    judged in aggregate: 0 where a group has no hollow unit, and nothing is computed)."""
+    p, worst = s.p, np.zeros(s.ctl.count)
+    hollow = None if p.ink_share is None else np.nonzero(p.ink_share < 1.0)[0]
+    if hollow is None or len(hollow) == 0:
+        return worst
+    n, values = len(p.layer), s.values.detach()
+    layer = torch.as_tensor(p.layer, device=values.device, dtype=torch.long)
+    over = p.terms.unit_overlap(values, s.index, s.owner, layer, n).cpu().numpy()
+    drawn = torch.zeros(n, dtype=values.dtype, device=values.device).index_add_(0, s.owner, values)
+    share = over[hollow] / np.maximum(drawn.cpu().numpy()[hollow] * p.ink_share[hollow], 1e-6)
+    np.maximum.at(worst, s.ctl.unit_group[hollow], share)
+    return worst
 
 
 SCHEDULE = (BestLoss(), StepSize(), FillScale(), MeasureRoom(), Relocate(), Uncross(), Rest(),

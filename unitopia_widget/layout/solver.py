@@ -68,6 +68,8 @@ class Problem:
     overlap_target: float = 0.002  # raster overlap share above which steps shrink
     final_overlap: float = 0.001   # overlap share a layout must reach (scale shrinks until)
     final_outside: float = 0.001   # outside share a layout must reach (scale shrinks until)
+    final_unit_overlap: float = 0.003  # overlap share of its ink no hollow unit may keep (scale shrinks until)
+    ink_share: np.ndarray | None = None  # (N,) ink area / footprint area, < 1 for hollow marks; None: all 1
     room_target: float = 0.02      # empty share of a closed container below which it is full
     relocate_share: float = 0.05   # share of a roomy layer's marks moved into holes per window
     legalize_rounds: int = 10
