@@ -267,9 +267,11 @@ class Legalize(Rule):
     """At the end of a polish: a layout that still overlaps more than ``final_overlap`` or
     pokes out more than ``final_outside``, or one of whose units has more than
     ``final_unit_overlap`` of its ink overlapped (``unit_crowding``), gives up a little scale
-    (open scales faster: no room is lost, and forces keep their piles pressed), thin marks
-    uncross, and a shorter polish runs again, up to ``legalize_rounds``
-    (``legalize_rounds_open`` without a controlled scale); otherwise the layout is done.
+    (open scales faster: no room is lost, and forces keep their piles pressed; a crowded
+    hollow unit, wedged between neighbours, makes it give up a share of its overlap, up to
+    ``legalize_shrink_max``), thin marks uncross, and a shorter polish runs again, up to
+    ``legalize_rounds`` (``legalize_rounds_open`` without a controlled scale); otherwise the
+    layout is done.
     ``max_iterations`` caps it all. Needed by data-true sizes that never push a mark out,
     open piles, spiky marks, and hollow ones (whose contacts are a large share of their ink)."""
 
@@ -280,15 +282,20 @@ class Legalize(Rule):
         p, ctl = s.p, s.ctl
         if not (s.polish_left <= 0 or s.iteration >= p.max_iterations):
             return False
+        worst = unit_crowding(s)
         bad = (s.overlap_g > p.final_overlap) | (s.outside_g > p.final_outside) \
-            | (unit_crowding(s) > p.final_unit_overlap)
+            | (worst > p.final_unit_overlap)
         limit = p.legalize_rounds if ctl.free.any() else p.legalize_rounds_open
         if bad.any() and s.rounds < limit and s.iteration < p.max_iterations:
             s.rounds += 1
             s.polish_left = p.polish_iterations // 3
             uncross(p, ctl, s.place, s.optimizer, s.values, s.index, s.owner)
             give = np.where(ctl.free, 1.0, p.legalize_gain_open)
-            ctl.log -= bad * np.maximum(p.legalize_shrink, give * np.maximum(s.overlap_g, s.outside_g))
+            # a wedged hollow unit's contact opens as the scale gives up a share of its size: the
+            # shrink follows the worst unit's overlapped share, up to legalize_shrink_max
+            wedged = np.minimum(p.legalize_gain_unit * worst, p.legalize_shrink_max)
+            ctl.log -= bad * np.maximum(np.maximum(p.legalize_shrink, wedged),
+                                        give * np.maximum(s.overlap_g, s.outside_g))
             return True
         s.done = True
         return False
