@@ -76,7 +76,7 @@ class Problem:
     legalize_rounds_open: int = 20  # when no scale fills a container (forces press open piles)
     legalize_shrink: float = 0.005
     legalize_gain_unit: float = 0.3    # log-scale shrink per legalising round / the worst hollow unit's share
-    legalize_shrink_max: float = 0.02  # the most that share may take per round
+    legalize_shrink_max: float = 0.02  # the most log-scale that shrink may give up per round
     legalize_gain_open: float = 2.0   # log-scale shrink per legalising round / overlap, fixed scales
     grow_overlap: float = 0.01     # the fill controller grows the scale below half this overlap
     scale_step: float = 0.003      # log-scale step of the fill controller per iteration
