@@ -5,7 +5,7 @@ by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
 margins (a page of drops turned to its centre), seven kinds of snowflakes around
 lettering, tall thin marks (data-true and on a ``height_range``), blocked layers and emitters (a stack whose layers
-shrink 4x; nine layers three to a bowl), turning rectangles, line-drawn
+shrink 4x; nine layers three to a bowl; snowflakes stacked in a vase), turning rectangles, line-drawn
 sketches, hollow rings and a container PNG with faint alpha pixels (assets
 made in code). Each
 design is laid out by ``uw.UnitoPia``, exported to SVG, and measured by an independent checker
@@ -170,6 +170,21 @@ def design_strata_alike():
     w = uw.UnitoPia(df, mark="circle", size="v", by="year", container=c, canvas=(W, H),
                     forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
     for j in range(1, 4):
+        w.layer(str(j)).set(blocks=[str(j - 1)])
+    return w, [c]
+
+
+def design_flake_stack():
+    """Three layers of snowflakes stacked in a vase under a downward force, open, at the
+    default fill, 20/40/80 marks, 4x smaller from first to last: six thin arms pack far
+    less densely than their ink, so a fill of half the vase overflows it."""
+    k = np.repeat(np.arange(3), [20, 40, 80])
+    df = pd.DataFrame({"year": k, "v": lognormal(140, 2, 1) * 4.0 ** (-k / 2)})
+    c = uw.Container.polygon([(300, 40), (500, 40), (460, 150), (650, 350), (560, 570),
+                              (240, 570), (150, 350), (340, 150)])
+    w = uw.UnitoPia(df, mark=icon("snowflake"), size="v", by="year", color="year", container=c,
+                    canvas=(W, H), forces=[uw.DirectionalForce(90)], boundary="open", seed=0)
+    for j in (1, 2):
         w.layer(str(j)).set(blocks=[str(j - 1)])
     return w, [c]
 
@@ -375,7 +390,8 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "rings": design_rings, "faint-png": design_faint_png,
            "strata": design_strata, "strata-alike": design_strata_alike, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
            "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
-           "lettering": design_lettering, "ties-margin": design_ties_margin}
+           "lettering": design_lettering, "ties-margin": design_ties_margin,
+           "flake-stack": design_flake_stack}
 
 
 def build(name):

@@ -1,5 +1,6 @@
 """The size-aware start (pack.py) and the controller decisions it relies on (issue 11, 13)."""
 import math
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -125,6 +126,53 @@ def test_stacked_layers_rest_in_strata_though_the_last_are_four_times_smaller():
     end_y = table.groupby("layer")["y"].mean()
     assert end_y["0"] > end_y["1"] > end_y["2"] > end_y["3"]
     assert max(below_envelope(table, str(j - 1), str(j)) for j in (1, 2, 3)) <= 0.05
+
+
+# six thin arms: a footprint (its ink) that packs far less densely than a disc
+FLAKE = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-50 -50 100 100"><g stroke="#4a90c8" '
+         'stroke-width="6" stroke-linecap="round">' + "".join(
+             f'<line x1="0" y1="0" x2="{46 * math.cos(a):.1f}" y2="{46 * math.sin(a):.1f}"/>'
+             for a in np.arange(6) * math.pi / 3) + "</g></svg>")
+TUB = [(40, 30), (360, 30), (340, 280), (60, 280)]
+
+
+def test_an_open_stack_of_spiky_marks_at_the_default_fill_settles_without_shrinking_to_a_third():
+    # ink covering half the tub is more than six-armed marks pack into: the start overflowed
+    # it and the legalising rounds shrank the marks to 0.31 of their start, strewn about
+    k = np.repeat([0, 1, 2], [12, 24, 48])
+    df = pd.DataFrame({"k": k, "v": np.random.default_rng(1).uniform(1, 2, len(k)) * 4.0 ** -k})
+    chart = uw.Chart(df, mark=uw.Mark.svg(FLAKE), size="v", by="k", canvas=(400, 300), seed=0,
+                     container=uw.Container.polygon(TUB), boundary="open",
+                     forces=[uw.DirectionalForce(90)])
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    table = chart.layout()
+    start, end = chart.frames[0][:, 3], chart.result.unit_scale
+    assert end.min() >= 0.7 * start.max(), (start.max(), end.min())      # 0.78 (was 0.31)
+    end_y = table.groupby("layer")["y"].mean()
+    assert end_y["0"] > end_y["1"] > end_y["2"]
+    assert ink_metrics(chart.to_svg(legend=False), (400, 300))["overlap"] < 0.01
+
+
+@pytest.mark.parametrize("fill", [0.2, 0.6])
+def test_an_open_fill_its_marks_cannot_pack_is_lowered_with_a_warning(fill):
+    df = pd.DataFrame({"v": np.random.default_rng(0).uniform(1, 3, 80)})
+    chart = uw.Chart(df, mark="star", size="v", canvas=(400, 300), seed=0, fill=fill,
+                     container=uw.Container.polygon(TUB), boundary="open",
+                     forces=[uw.DirectionalForce(90)])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        problem, units, _, _ = start_of(chart)
+    said = [str(w.message) for w in caught if "fill=" in str(w.message)]
+    area = Region(chart.layers[0].region.coverage((400, 300), 1.0), 1.0).area
+    cover = float(units.area.sum()) * problem.group_scale[0] ** 2 / area   # the ink's share
+    if fill == 0.2:
+        assert not said and cover == pytest.approx(0.2, rel=1e-6)
+    else:
+        # stars settle into about 0.4 of the tub; their footprints pack into 0.32 at the start
+        assert len(said) == 1 and "fill=0.6 is more than" in said[0], said
+        lowered = float(said[0].split("laid out at fill=")[1].split(",")[0])
+        assert 0.25 < lowered < 0.45 and cover == pytest.approx(lowered, abs=0.01)
 
 
 def test_unequal_sizes_settle_in_about_as_many_iterations_as_equal_ones():

@@ -191,7 +191,8 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared", caps=Non
     """The starting global scales and which of them are controlled during the layout.
 
     Open layers (and closed ones with a ``fill``) fix the scale so their marks
-    cover ``fill`` of the container; closed layers without one start with
+    cover ``fill`` of the container (lowered later where their footprints cannot pack:
+    ``start.packed_scales``); closed layers without one start with
     their footprints (margins included) at 75% coverage and let the solver grow
     the scale until the container is full. No scale lets a layer's largest
     mark outgrow the widest disc its container holds. ``scales="shared"``: one
