@@ -353,7 +353,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
                    reach=_reach(units), ink_share=units.ink_share,
                    stage=np.array([depth[i] for i in units.layer]),
-                   travelling=any(layer.emitter is not None for layer in layers), anchor=anchor)
+                   travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
+                   regions=tuple(layer.region for layer in layers))
 
 
 def _check(abort) -> None:

@@ -23,6 +23,7 @@ import torch
 
 from ..design.encodings import footprint
 from ..design.forces import potential
+from . import contacts
 from .losses import CanvasLoss, CanvasTerms, shares
 from .optim import Adam
 from .placement import Placement
@@ -83,6 +84,7 @@ class Problem:
     patience: int = 12
     settle_motion: float = 0.75    # mean travel over a patience window, in mean radii, below which marks rest
     device: str = "cpu"
+    regions: tuple = ()            # per layer: its allowed region (a design Container), for contacts.clear
 
 
 class Cancelled(Exception):
@@ -185,8 +187,10 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
         s.values, s.index, s.owner = values, index, owner
         run(s)
-    center, angle = place.transforms()
     unit_scale = ctl.unit_scale()
+    if not cancelled and p.regions and p.ink_share is not None and (p.ink_share < 1.0).any():
+        _clear_contacts(p, place, unit_scale, rotating)
+    center, angle = place.transforms()
     if on_frame is not None:
         on_frame(frame(place, unit_scale))
     stats = dict(p.terms.stats, loss=s.loss_value)
@@ -196,6 +200,18 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                   seconds=time.perf_counter() - started, cancelled=cancelled, stats=stats,
                   unit_scale=unit_scale.astype(np.float64), phases=dict(s.record),
                   axes=[] if p.anchor is None else list(p.anchor.axes))
+
+
+def _clear_contacts(p: Problem, place: Placement, unit_scale: np.ndarray, rotating: np.ndarray) -> None:
+    """Hollow marks are held to a per-unit contract: move the free units off the contacts
+    finer than the raster (``contacts.clear``). Units on a curve track or held stay."""
+    free = place.keep[:, 0].cpu().numpy() > 0
+    for track in place.tracks:
+        free[track.index.cpu().numpy()] = False
+    center, angle = place.transforms()
+    move = contacts.clear(p, center.detach(), angle.detach(), unit_scale, free, rotating)
+    with torch.no_grad():
+        place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
 
 
 def frame(place: Placement, scale: np.ndarray) -> np.ndarray:

@@ -1,0 +1,153 @@
+"""Contacts finer than the layout's raster, cleared on a finer one after the solve.
+
+The solver judges the marks on a raster of ``grid.rho`` px per canvas px, aimed at a
+mean footprint ``TARGET_RADIUS`` raster px across, so two marks that touch less than a
+raster pixel deep can read as apart there. That is little of all the ink, but much of a
+small ring's, and hollow marks are held to a per-unit contract (``schedule.unit_crowding``).
+Their layouts are drawn once more at ``FINE_RHO`` px per canvas px, each footprint cut at
+alpha 0.5 as a checker renders a unit. Every movable unit with more than ``CLEAR_SHARE``
+of its footprint pixels on a footprint it collides with, or outside its region, moves by
+whole fine pixels, at most one layout raster pixel, to the nearby spot where the fewest
+of its pixels are; it stays where it is unless that spot has fewer than where it is. A
+pixel two footprints share counts for both, so every move lowers the overlap in all.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import torch
+
+from ..design.encodings import footprint
+from .raster import Planner, RasterGrid, render_samples
+
+FINE_RHO = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
+MAX_FINE = 8_000_000    # fine raster px of one slab at most (large canvases get coarser)
+CLEAR_SHARE = 0.002     # share of a unit's footprint pixels overlapped or outside above which it moves
+ROUNDS = 3              # passes over the units still above it
+CHUNK = 4_000_000       # fine pixels looked up at once when a unit tries its nearby spots
+
+
+@torch.no_grad()
+def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
+          free: np.ndarray, rotating: np.ndarray) -> np.ndarray:
+    """``(N, 2)`` canvas px: the move of each unit that clears its contacts (0 for most).
+
+    ``p``: the solver's ``Problem`` (its ``regions`` give each layer's allowed region);
+    ``center (N, 2)`` canvas px and ``angle (N,)`` radians, the solved transforms;
+    ``unit_scale (N,)``; ``free (N,)`` bool, the units that may move; ``rotating (N,)`` bool,
+    units whose patch must hold any rotation (``Placement.rotating``)."""
+    n = len(p.layer)
+    shifted = np.zeros((n, 2), dtype=np.int64)   # (dy, dx) fine px each unit has moved
+    if not free.any():
+        return np.zeros((n, 2))
+    w, h = p.grid.canvas
+    rho = max(p.grid.rho, min(FINE_RHO, math.sqrt(MAX_FINE / (w * h))))
+    grid = RasterGrid((w, h), rho, pad=2)
+    dev = center.device
+    hw = p.half_w * footprint(p.margin) * unit_scale
+    hh = p.half_h * footprint(p.margin) * unit_scale
+    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev).plan_for(hw, hh)
+    as_t = lambda a: torch.as_tensor(a, device=dev, dtype=torch.float32)   # noqa: E731
+    values, index, owner = render_samples(center, angle, as_t(hw), as_t(hh), plan, p.pyramids, grid)
+    drawn = values > 0.5
+    index, owner = index[drawn].long(), owner[drawn]
+    rows, cols = grid.shape
+    size = rows * cols
+    layer = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
+    n_layers = int(p.terms.blocks.shape[0])
+    collide = _collisions(p.terms, n_layers).to(dev)           # (L, L) float
+    count = torch.zeros(n_layers * size, device=dev).index_add_(
+        0, layer[owner] * size + index, torch.ones_like(index, dtype=torch.float32))
+    seen = collide @ count.reshape(n_layers, size)              # (L, S) colliding footprints per pixel
+    inside = _inside(p.regions, grid, dev)                      # (L, S) bool
+    # each unit's pixels, kept apart so that a move redraws only the unit that moved
+    order = torch.argsort(owner, stable=True)
+    index, owner = index[order], owner[order]
+    bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
+    pixels = {}
+    reach = max(int(rho / p.grid.rho), 1)                     # one layout raster pixel, fine px
+    dy, dx = np.mgrid[-reach:reach + 1, -reach:reach + 1]
+    near = dy ** 2 + dx ** 2 <= reach ** 2
+    offsets = torch.as_tensor(np.stack([dy[near], dx[near]], 1), device=dev)   # (D, 2)
+    stay = int(np.flatnonzero((dy[near] == 0) & (dx[near] == 0))[0])
+    cost_of_move = (offsets.float() ** 2).sum(1) * 1e-3        # ties go to the shortest move
+    for _ in range(ROUNDS):
+        share = _crowding(seen, inside, index, owner, layer, n)
+        bad = (share > CLEAR_SHARE) & free
+        if not bad.any():
+            break
+        moved = False
+        for i in np.argsort(-share * bad)[: int(bad.sum())]:
+            pix = pixels.get(i, index[bounds[i]:bounds[i + 1]])
+            a = int(p.layer[i])
+            seen[:, pix] -= collide[:, a:a + 1]                  # the unit lifted off the raster
+            crowded = _crowded_at(seen[a], inside[a], pix, offsets, grid.shape)
+            within = ((offsets + torch.as_tensor(shifted[i], device=dev)) ** 2).sum(1) <= reach ** 2
+            best = int(torch.argmin(torch.where(within, crowded + cost_of_move, math.inf)))
+            if crowded[best] < crowded[stay]:
+                pix = pix + int(offsets[best, 0]) * cols + int(offsets[best, 1])
+                pixels[i] = pix
+                shifted[i] += offsets[best].cpu().numpy()
+                moved = True
+            seen[:, pix] += collide[:, a:a + 1]
+        if not moved:
+            break
+        if pixels:   # the moved units' pixels replace theirs in the flat lists
+            keep = ~torch.isin(owner, torch.as_tensor(list(pixels), device=dev))
+            index = torch.cat([index[keep]] + list(pixels.values()))
+            owner = torch.cat([owner[keep]] + [torch.full_like(v, k) for k, v in pixels.items()])
+            order = torch.argsort(owner, stable=True)
+            index, owner = index[order], owner[order]
+            bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
+            pixels = {}
+    return shifted[:, ::-1] / rho   # (dx, dy) canvas px
+
+
+def _crowded_at(seen: torch.Tensor, inside: torch.Tensor, pix: torch.Tensor,
+                offsets: torch.Tensor, shape: tuple[int, int]) -> torch.Tensor:
+    """``(D,)`` float: for each of the ``offsets (D, 2)`` (rows, columns), how many of the
+    unit's ``pix (n,)`` (flat fine indices) would lie on a footprint in ``seen (S,)`` or
+    outside ``inside (S,)``; inf where some would leave the raster. In chunks of offsets,
+    so that a large unit does not hold ``D x n`` indices at once."""
+    rows, cols = shape
+    r, c = pix // cols, pix % cols
+    out = []
+    for part in torch.split(offsets, max(1, CHUNK // max(len(pix), 1))):
+        r2, c2 = r[None] + part[:, :1], c[None] + part[:, 1:]          # (d, n)
+        on = ((r2 >= 0) & (r2 < rows) & (c2 >= 0) & (c2 < cols)).all(1)
+        spot = r2.clamp(0, rows - 1) * cols + c2.clamp(0, cols - 1)
+        crowded = ((seen[spot] > 0.5) | ~inside[spot]).sum(1).float()
+        out.append(torch.where(on, crowded, math.inf))
+    return torch.cat(out)
+
+
+def _collisions(terms, n_layers: int) -> torch.Tensor:
+    """``(L, L)`` float: 1 where two layers' footprints may not share a pixel (the same
+    layer, or one blocks or rests on the other; either way round)."""
+    pair = torch.eye(n_layers) + terms.blocks.cpu()
+    if terms.rests is not None:
+        pair = pair + terms.rests.cpu()
+    return ((pair + pair.T) > 0).float()
+
+
+def _inside(regions, grid: RasterGrid, dev) -> torch.Tensor:
+    """``(L, S)`` bool: the fine pixels at least half inside each layer's region."""
+    rows, cols = grid.shape
+    out, made = [], {}
+    for region in regions:
+        if id(region) not in made:
+            cov = region.coverage(grid.canvas, grid.rho)
+            mask = np.zeros((rows, cols), dtype=bool)
+            mask[grid.pad:grid.pad + cov.shape[0], grid.pad:grid.pad + cov.shape[1]] = cov >= 0.5
+            made[id(region)] = torch.as_tensor(mask.reshape(-1), device=dev)
+        out.append(made[id(region)])
+    return torch.stack(out)
+
+
+def _crowding(seen, inside, index, owner, layer, n: int) -> np.ndarray:
+    """``(N,)``: the share of each unit's fine pixels on another colliding footprint or outside."""
+    lay = layer[owner]
+    hit = ((seen[lay, index] > 1.5) | ~inside[lay, index]).float()
+    area = torch.bincount(owner, minlength=n).clamp_min(1).float()
+    return (torch.bincount(owner, weights=hit, minlength=n) / area).cpu().numpy()
