@@ -11,7 +11,7 @@ import torch
 import unitopia_widget as uw
 from envelope import below_envelope
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.strata import Radial, cone_distance, shadow_distance
+from unitopia_widget.layout.strata import Radial, cone_distance, shadow, shadow_distance
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -200,3 +200,17 @@ def test_piles_grown_into_one_another_block_the_gaps_on_the_border_between_them(
     assert (shadow_distance(xy, Radial(points), discs, radii)[:2] > 0).all()
     assert (shadow_distance(xy, Radial(points, band=6.0), discs, radii) < 0).tolist() == \
         [True, True, False]
+
+
+@pytest.mark.parametrize("dim, reverse", [(0, False), (0, True), (1, False), (1, True)])
+def test_a_shadow_holds_the_most_ink_at_or_before_each_pixel_along_its_sweep(dim, reverse):
+    """Down, up, right and left: the running maximum along the raster axis (a scan along
+    rows is run on the transposed raster, where it runs along memory)."""
+    ink = torch.rand(7, 5, generator=torch.Generator().manual_seed(dim + 2 * reverse))
+    ref = ink.numpy()
+    if reverse:
+        ref = np.flip(ref, dim)
+    ref = np.maximum.accumulate(ref, axis=dim)
+    if reverse:
+        ref = np.flip(ref, dim)
+    np.testing.assert_array_equal(shadow(ink, dim, reverse).numpy(), ref)

@@ -72,14 +72,20 @@ class CanvasTerms:
         return self.inside.cpu().numpy()
 
     @functools.cached_property
+    def any_blocks(self) -> bool:
+        """Whether some layer sees another's ink itself (read once: the blocks are fixed)."""
+        return bool(self.blocks.any())
+
+    @functools.cached_property
     def has_obstacles(self) -> bool:
         """Whether some layer blocks on another (read once: the blocks are fixed)."""
-        return bool(self.blocks.any()) or (self.rests is not None and bool(self.rests.any()))
+        return self.any_blocks or (self.rests is not None and bool(self.rests.any()))
 
     def obstacles(self, own: torch.Tensor) -> torch.Tensor:
         """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
         on, and the shadow of those it rests on (see the module docstring)."""
-        obstacle = self.blocks.to(own) @ own
+        # blocks is all zeros where every layer rests (a stack): skip its product
+        obstacle = self.blocks.to(own) @ own if self.any_blocks else torch.zeros_like(own)
         if self.rests is None:
             return obstacle
         resting = (self.rests.to(own) @ own).clamp_(max=1.0)
@@ -175,7 +181,9 @@ class CanvasLoss(torch.autograd.Function):
             share = own / total.clamp_min(1e-6)
             excess = share * spill                                              # the layer's share
             overlap = excess.sum(1)
-            covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1)
+            # the container covered: none without a closed layer to fill (inside is all 0)
+            covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1) if terms.inside_total > 0 \
+                else torch.zeros(n_layers, dtype=own.dtype, device=own.device)
         else:
             total = own
             spill = excess = (own - 1.0).clamp_min_(0.0)

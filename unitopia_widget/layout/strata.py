@@ -54,6 +54,8 @@ def sweep_of(forces, band: float = 0.0):
 def shadow(ink: torch.Tensor, dim: int, reverse: bool) -> torch.Tensor:
     """``ink (H, W)`` swept along raster ``dim`` (towards higher indices, or lower when
     ``reverse``): each pixel holds the most ink at or before it along the sweep."""
+    if dim == 0:   # a scan along memory runs several times faster than one across it
+        return shadow(ink.t().contiguous(), 1, reverse).t()
     if reverse:
         return torch.cummax(ink.flip(dim), dim)[0].flip(dim)
     return torch.cummax(ink, dim)[0]
