@@ -22,7 +22,7 @@ from ..design.encodings import footprint
 from .raster import Planner, RasterGrid, render_samples
 
 FINE_RHO = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
-MAX_FINE = 8_000_000    # fine raster px of one slab at most (large canvases get coarser)
+MAX_FINE = 24_000_000   # fine raster px over all layer slabs at most (more get coarser)
 CLEAR_SHARE = 0.002     # share of a unit's footprint pixels overlapped or outside above which it moves
 ROUNDS = 3              # passes over the units still above it
 CHUNK = 4_000_000       # fine pixels looked up at once when a unit tries its nearby spots
@@ -42,7 +42,8 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     if not free.any():
         return np.zeros((n, 2))
     w, h = p.grid.canvas
-    rho = max(p.grid.rho, min(FINE_RHO, math.sqrt(MAX_FINE / (w * h))))
+    n_layers = int(p.terms.blocks.shape[0])
+    rho = max(p.grid.rho, min(FINE_RHO, math.sqrt(MAX_FINE / (w * h * n_layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = center.device
     hw = p.half_w * footprint(p.margin) * unit_scale
@@ -55,11 +56,11 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     rows, cols = grid.shape
     size = rows * cols
     layer = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
-    n_layers = int(p.terms.blocks.shape[0])
     collide = _collisions(p.terms, n_layers).to(dev)           # (L, L) float
     count = torch.zeros(n_layers * size, device=dev).index_add_(
         0, layer[owner] * size + index, torch.ones_like(index, dtype=torch.float32))
     seen = collide @ count.reshape(n_layers, size)              # (L, S) colliding footprints per pixel
+    del count
     inside = _inside(p.regions, grid, dev)                      # (L, S) bool
     # each unit's pixels, kept apart so that a move redraws only the unit that moved
     order = torch.argsort(owner, stable=True)
