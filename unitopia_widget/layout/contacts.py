@@ -19,6 +19,7 @@ import numpy as np
 import torch
 
 from ..design.encodings import footprint
+from .fields import padded
 from .raster import Planner, RasterGrid, render_samples
 
 FINE_RHO = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
@@ -62,11 +63,11 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     seen = collide @ count.reshape(n_layers, size)              # (L, S) colliding footprints per pixel
     del count
     inside = _inside(p.regions, grid, dev)                      # (L, S) bool
-    # each unit's pixels, kept apart so that a move redraws only the unit that moved
+    # each unit's pixels in one run, so that a move rewrites only the unit that moved (a move
+    # shifts them: their number stays)
     order = torch.argsort(owner, stable=True)
     index, owner = index[order], owner[order]
     bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
-    pixels = {}
     reach = max(int(rho / p.grid.rho), 1)                     # one layout raster pixel, fine px
     dy, dx = np.mgrid[-reach:reach + 1, -reach:reach + 1]
     near = dy ** 2 + dx ** 2 <= reach ** 2
@@ -80,28 +81,19 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
             break
         moved = False
         for i in np.argsort(-share * bad)[: int(bad.sum())]:
-            pix = pixels.get(i, index[bounds[i]:bounds[i + 1]])
+            pix = index[bounds[i]:bounds[i + 1]]
             a = int(p.layer[i])
             seen[:, pix] -= collide[:, a:a + 1]                  # the unit lifted off the raster
             crowded = _crowded_at(seen[a], inside[a], pix, offsets, grid.shape)
             within = ((offsets + torch.as_tensor(shifted[i], device=dev)) ** 2).sum(1) <= reach ** 2
             best = int(torch.argmin(torch.where(within, crowded + cost_of_move, math.inf)))
             if crowded[best] < crowded[stay]:
-                pix = pix + int(offsets[best, 0]) * cols + int(offsets[best, 1])
-                pixels[i] = pix
+                pix += int(offsets[best, 0]) * cols + int(offsets[best, 1])   # a view: index too
                 shifted[i] += offsets[best].cpu().numpy()
                 moved = True
             seen[:, pix] += collide[:, a:a + 1]
         if not moved:
             break
-        if pixels:   # the moved units' pixels replace theirs in the flat lists
-            keep = ~torch.isin(owner, torch.as_tensor(list(pixels), device=dev))
-            index = torch.cat([index[keep]] + list(pixels.values()))
-            owner = torch.cat([owner[keep]] + [torch.full_like(v, k) for k, v in pixels.items()])
-            order = torch.argsort(owner, stable=True)
-            index, owner = index[order], owner[order]
-            bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
-            pixels = {}
     return shifted[:, ::-1] / rho   # (dx, dy) canvas px
 
 
@@ -134,14 +126,11 @@ def _collisions(terms, n_layers: int) -> torch.Tensor:
 
 def _inside(regions, grid: RasterGrid, dev) -> torch.Tensor:
     """``(L, S)`` bool: the fine pixels at least half inside each layer's region."""
-    rows, cols = grid.shape
     out, made = [], {}
     for region in regions:
         if id(region) not in made:
-            cov = region.coverage(grid.canvas, grid.rho)
-            mask = np.zeros((rows, cols), dtype=bool)
-            mask[grid.pad:grid.pad + cov.shape[0], grid.pad:grid.pad + cov.shape[1]] = cov >= 0.5
-            made[id(region)] = torch.as_tensor(mask.reshape(-1), device=dev)
+            cov = padded(region.coverage(grid.canvas, grid.rho), grid)
+            made[id(region)] = torch.as_tensor(cov.reshape(-1) >= 0.5, device=dev)
         out.append(made[id(region)])
     return torch.stack(out)
 

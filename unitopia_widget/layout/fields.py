@@ -7,6 +7,15 @@ from scipy import ndimage
 from .raster import RasterGrid
 
 
+def padded(coverage: np.ndarray, grid: RasterGrid) -> np.ndarray:
+    """``coverage (H, W)`` (no padding) placed on the padded raster: float32 ``grid.shape``,
+    0 on the padding."""
+    out = np.zeros(grid.shape, dtype=np.float32)
+    h, w = coverage.shape
+    out[grid.pad:grid.pad + h, grid.pad:grid.pad + w] = coverage
+    return out
+
+
 def region_fields(coverage: np.ndarray, grid: RasterGrid, falloff: float):
     """Fields of one allowed region on the padded raster.
 
@@ -17,10 +26,7 @@ def region_fields(coverage: np.ndarray, grid: RasterGrid, falloff: float):
     ``penalty = outside + distance_outside / falloff``: flat outside plus a
     slope, so a mark far outside still feels which way is in.
     """
-    pad = grid.pad
-    inside = np.zeros(grid.shape, dtype=np.float32)
-    h, w = coverage.shape
-    inside[pad:pad + h, pad:pad + w] = coverage
+    inside = padded(coverage, grid)
     outside = 1.0 - inside
     if (inside >= 0.5).any():
         distance = ndimage.distance_transform_edt(inside < 0.5).astype(np.float32)
