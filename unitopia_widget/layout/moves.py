@@ -1,6 +1,7 @@
 """Moves the solver makes by hand, outside the gradient: jammed marks into holes
-(``relocate.py``), crossing thin marks side by side (``uncross.py``), and what Adam must
-forget or rescale when it happens. ``p`` is the solver's ``Problem``."""
+(``relocate.py``), crossing thin marks side by side (``uncross.py``), buried marks of a
+stratum back onto its surface (``surface.py``), and what Adam must forget or rescale when
+it happens. ``p`` is the solver's ``Problem``."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,6 +12,7 @@ from .pack import thin
 from .placement import Placement
 from .relocate import holes, unit_overlap
 from .scales import Scales
+from .surface import buried
 from .uncross import ink_pairs, turns
 
 
@@ -94,3 +96,21 @@ def uncross(p, ctl: Scales, place: Placement, optimizer, values, index, owner) -
     if moves:
         forget(optimizer, (place.t, place.theta), [unit for unit, _, _ in moves])
     return bool(moves)
+
+
+def resurface(p, place: Placement, optimizer, values, index, owner) -> bool:
+    """Lift the free marks buried in their stratum's obstacle back onto its surface
+    (``surface.py``) and forget their Adam momentum. Returns whether any moved."""
+    rests = p.terms.rests
+    if rests is None or not p.terms.has_obstacles or not bool(rests.any()):
+        return False
+    with torch.no_grad():
+        center = place.transforms()[0].cpu().numpy().astype(float)
+        lifts = buried(p.terms, values.detach(), index, owner, p.layer, center, movable(place),
+                       p.grid.rho)
+        for unit, (dx, dy) in lifts:
+            place.t[unit, 0] += dx
+            place.t[unit, 1] += dy
+    if lifts:
+        forget(optimizer, (place.t,), [unit for unit, _ in lifts])
+    return bool(lifts)

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import torch
 
-from .moves import relocate, rescale_moments, uncross
+from .moves import relocate, rescale_moments, resurface, uncross
 from .optim import Adam
 from .placement import Placement
 from .scales import Scales, coverage
@@ -185,6 +185,23 @@ class Uncross(Rule):
         return False
 
 
+class Resurface(Rule):
+    """Each settle window (and each legalising round), on stacks: free marks buried in
+    their stratum's obstacle (a large mark of a lower layer rolled over them) are lifted
+    back onto its surface (``surface.py``); the flat obstacle gives them no gradient out.
+    The settle then starts its patience afresh: the lifted marks have their own layer and
+    those above to part. Needed by stacks whose layers differ in size."""
+
+    name = "resurface"
+    window = True
+
+    def __call__(self, s):
+        if resurface(s.p, s.place, s.optimizer, s.values, s.index, s.owner):
+            s.best, s.since_best = math.inf, 0
+            return True
+        return False
+
+
 class Rest(Rule):
     """Each settle window, on layouts with forces: marks rest when the mean travel of the
     stage being poured over the window is under ``settle_motion`` mean radii (a tenth still
@@ -290,6 +307,7 @@ class Legalize(Rule):
             s.rounds += 1
             s.polish_left = p.polish_iterations // 3
             uncross(p, ctl, s.place, s.optimizer, s.values, s.index, s.owner)
+            resurface(p, s.place, s.optimizer, s.values, s.index, s.owner)
             give = np.where(ctl.free, 1.0, p.legalize_gain_open)
             # a wedged hollow unit's contact opens as the scale gives up a share of its size: the
             # shrink follows the worst unit's overlapped share, up to legalize_shrink_max
@@ -320,7 +338,7 @@ def unit_crowding(s: State) -> np.ndarray:
     return worst
 
 
-SCHEDULE = (BestLoss(), StepSize(), FillScale(), MeasureRoom(), Relocate(), Uncross(), Rest(),
+SCHEDULE = (BestLoss(), StepSize(), FillScale(), MeasureRoom(), Relocate(), Uncross(), Resurface(), Rest(),
             Pour(), StartPolish(), Decay(), Legalize())
 
 

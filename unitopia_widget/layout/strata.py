@@ -107,7 +107,7 @@ class RadialShadow:
 
     def __init__(self, radial: Radial, shape, rho: float, pad: int, device):
         h, w = shape
-        self.shape = shape
+        self.shape, self.radial = shape, radial
         # canvas px -> continuous raster pixel index (pixel centres at integers)
         to_px = lambda x, y: (x * rho + pad - 0.5, y * rho + pad - 0.5)   # noqa: E731
         corners = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [-0.5, h - 0.5], [w - 0.5, h - 0.5]])

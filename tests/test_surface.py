@@ -1,0 +1,92 @@
+"""Surface: a mark buried in its stratum's obstacle (a large mark of a lower layer rolled over
+it) is lifted back onto the surface against its pull, lowest stratum first (issue 18,
+part 3); a mark on the surface, or one no spot clears, stays."""
+import numpy as np
+import pandas as pd
+import pytest
+import torch
+
+import unitopia_widget as uw
+from envelope import below_envelope
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.losses import CanvasTerms
+from unitopia_widget.layout.solver import solve
+from unitopia_widget.layout.strata import Radial
+from unitopia_widget.layout.surface import against, buried, strata_order
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+H = W = 40
+
+
+def square(unit: int, rows: range, cols: range):
+    """Samples of a solid square of alpha 1: ``(values, index, owner)``."""
+    index = [r * W + c for r in rows for c in cols]
+    return np.ones(len(index)), np.array(index), np.full(len(index), unit)
+
+
+def stack_terms(outside=None) -> CanvasTerms:
+    """Three layers on a ``(H, W)`` raster under a downward pull: 1 rests on 0, 2 on 1."""
+    rests = torch.tensor([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=torch.float64)
+    zero = torch.zeros(3, H * W, dtype=torch.float64)
+    return CanvasTerms(penalty=zero, outside=zero if outside is None else outside, inside=zero,
+                       blocks=torch.zeros(3, 3, dtype=torch.float64), rests=rests,
+                       sweeps=(None, (0, False), (0, False)), shape=(H, W))
+
+
+def lifts_of(terms, squares, layer, rho=0.5):
+    values, index, owner = (torch.as_tensor(np.concatenate(part)) for part in zip(*squares))
+    center = np.zeros((len(layer), 2))
+    return dict(buried(terms, values.double(), index.int(), owner.long(), np.asarray(layer),
+                       center, np.ones(len(layer), bool), rho))
+
+
+def test_a_buried_mark_is_lifted_onto_the_surface_and_the_layer_above_rests_on_it_lifted():
+    squares = [square(0, range(10, 20), range(10, 20)),    # a big mark of layer 0
+               square(1, range(16, 19), range(14, 17)),    # layer 1, under it
+               square(2, range(5, 8), range(30, 33)),      # layer 1, on the surface
+               square(3, range(12, 15), range(14, 17))]    # layer 2: clear until 1 is lifted
+    lifts = lifts_of(stack_terms(), squares, [0, 1, 1, 2])
+    # 9 raster px up puts unit 1 on rows 7-9, clear of the big mark's top row (10);
+    # unit 3 then lies in unit 1's shadow and goes up above it, to rows 4-6
+    assert lifts == {1: (0.0, -18.0), 3: (0.0, -16.0)}
+
+
+def test_a_mark_no_spot_clears_stays_where_it_is():
+    outside = torch.zeros(3, H * W, dtype=torch.float64)
+    outside[1].view(H, W)[:10] = 1.0    # its region ends where the obstacle begins
+    squares = [square(0, range(10, 40), range(10, 20)), square(1, range(16, 19), range(14, 17))]
+    assert lifts_of(stack_terms(outside), squares, [0, 1]) == {}
+
+
+def test_strata_are_lifted_lowest_first_whatever_their_order():
+    rests = np.zeros((4, 4), bool)
+    rests[0, 2] = rests[2, 3] = rests[1, 0] = True   # 3 <- 2 <- 0 <- 1
+    assert strata_order(rests) == [2, 0, 1]
+
+
+@pytest.mark.parametrize("xy, direction", [((60.0, 50.0), (1.0, 0.0)), ((50.0, 20.0), (0.0, -1.0))])
+def test_a_radial_stratum_lifts_out_from_the_point_that_pulls_it(xy, direction):
+    sweep = Radial(((50.0, 50.0, 1.0),)).on((100, 100), 1.0, 0, "cpu")
+    np.testing.assert_allclose(against(sweep, np.array([xy]))[0], direction, atol=1e-12)
+
+
+def test_small_marks_a_large_one_rolled_over_come_back_up_onto_it():
+    # one large disc on the floor with three small discs of the layer resting on it under it:
+    # the flat shadow gives them no gradient out, and the pull pressed them to the floor
+    k = np.repeat([0, 1], [1, 24])
+    df = pd.DataFrame({"k": k, "v": np.where(k == 0, 80.0, 1.0)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.DirectionalForce(90)], iterations=300)
+    chart.layer("1").set(blocks=["0"])
+    units = engine.bind(chart.df, chart.layers)
+    problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
+    radius = float(np.hypot(problem.half_w, problem.half_h)[0] * problem.group_scale[0]) / 2 ** 0.5
+    with torch.no_grad():
+        problem.placement.t[0] = torch.tensor([200.0, 290.0 - radius])
+        problem.placement.t[1:4] = torch.tensor([[180.0, 280.0], [200.0, 285.0], [220.0, 280.0]])
+    result = solve(problem)
+    table = engine.placements(units, chart.layers, result)
+    assert result.phases.get("settle.resurface", 0) > 0
+    assert below_envelope(table, "0", "1") == 0.0

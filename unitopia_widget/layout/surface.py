@@ -1,0 +1,115 @@
+"""Surface: marks buried in a stratum's obstacle are lifted back onto it.
+
+A layer that rests on others sees their ink swept along its force (``strata.py``): an
+obstacle that is flat, full everywhere below their envelope. A mark wholly inside it (a
+large mark of a lower layer rolled over it) gets no gradient out of it, and its force
+presses it further in. So a free mark with more than ``BURIED`` of its alpha on its
+obstacle is lifted against its pull (back along a directional sweep, out from the point
+that pulls it), by whole raster px, the least distance that leaves at most ``CLEAR`` of its
+alpha on the obstacle or outside its region. Layers are lifted lowest stratum first, each
+against the surface as the layers below it were lifted; a mark is not cleared of its own
+layer (the gradient parts it from its neighbours), nor lifted where no spot clears it.
+"""
+from __future__ import annotations
+
+import numpy as np
+import torch
+
+from .strata import RadialShadow
+
+BURIED = 0.5   # share of a mark's alpha on its obstacle above which it is lifted
+CLEAR = 0.01   # share of its alpha a lifted mark may keep on the obstacle or outside
+CHUNK = 32     # lift distances tried at once, raster px
+
+
+def strata_order(rests: np.ndarray) -> list:
+    """The resting layers of ``rests (L, L)`` (``rests[a, b]``: ``a`` rests on ``b``), each
+    after every layer it rests on, directly or not."""
+    depth = np.zeros(len(rests), dtype=int)
+    for _ in range(len(rests)):   # a layer's depth: 1 + the deepest it rests on
+        depth = np.where(rests.any(1), 1 + np.max(np.where(rests, depth[None], -1), 1), 0)
+    resting = np.nonzero(rests.any(1))[0]
+    return [int(a) for a in resting[np.argsort(depth[resting], kind="stable")]]
+
+
+def against(sweep, xy: np.ndarray) -> np.ndarray:
+    """``(n, 2)`` unit vectors (raster x, y) against ``sweep`` at ``xy (n, 2)`` canvas px:
+    back up a raster axis sweep ``(dim, reverse)``, out from the point that pulls each of
+    ``xy`` for a ``RadialShadow``."""
+    if isinstance(sweep, RadialShadow):
+        radial = sweep.radial
+        point = np.asarray(radial.points, float)[radial.pulling(xy), :2]
+        out = xy - point
+        norm = np.hypot(out[:, 0], out[:, 1])[:, None]
+        return np.where(norm > 1e-9, out / np.maximum(norm, 1e-9), np.array([0.0, -1.0]))
+    dim, reverse = sweep
+    step = np.zeros(2)
+    step[1 - dim] = 1.0 if reverse else -1.0   # raster dim 0 is y, dim 1 is x
+    return np.broadcast_to(step, (len(xy), 2))
+
+
+def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
+           layer: np.ndarray, center: np.ndarray, free: np.ndarray, rho: float) -> list:
+    """Lifts of the buried free marks: ``[(unit, (dx, dy) canvas px)]``. ``values``,
+    ``index``, ``owner`` ``(M,)`` the rendered samples (``render_samples``), ``layer (N,)``
+    each unit's layer, ``center (N, 2)`` canvas px, ``free (N,)`` bool, ``rho`` raster px
+    per canvas px; ``terms`` the ``CanvasTerms`` (its rests, sweeps, outside)."""
+    n_layers, size = terms.penalty.shape
+    height, width = terms.shape
+    layer_t = torch.as_tensor(layer, device=values.device, dtype=torch.long)
+    flat = index.long() + layer_t[owner] * size
+    own = torch.zeros(n_layers * size, dtype=values.dtype, device=values.device) \
+        .index_add_(0, flat, values).view(n_layers, size)
+    order = torch.argsort(owner, stable=True)
+    counts = torch.bincount(owner, minlength=len(layer)).cpu().numpy()
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    drawn = torch.zeros(len(layer), dtype=values.dtype, device=values.device).index_add_(0, owner, values)
+    lifts = []
+    for a in strata_order(terms.rests.cpu().numpy() > 0):
+        sweep = terms.sweeps[a]
+        if sweep is None:
+            continue
+        block = torch.maximum(terms.obstacles(own)[a].clamp(max=1.0), terms.outside[a].to(own))
+        mine = np.nonzero((layer == a) & free)[0]
+        if not len(mine):
+            continue
+        on = torch.zeros(len(layer), dtype=values.dtype, device=values.device) \
+            .index_add_(0, owner, values * block[index.long()])
+        share = (on / drawn.clamp_min(1e-6)).cpu().numpy()
+        lifting = mine[share[mine] > BURIED]
+        for unit, step in zip(lifting, against(sweep, center[lifting])):
+            samples = order[starts[unit]:starts[unit + 1]]
+            alpha, pixel = values[samples], index[samples].long()
+            distance = _lift(block, alpha, pixel, step, height, width)
+            if distance is None:
+                continue
+            shift = np.rint(distance * step).astype(int)
+            moved = pixel + int(shift[1]) * width + int(shift[0])
+            own[a].index_add_(0, pixel, -alpha).index_add_(0, moved, alpha)
+            lifts.append((int(unit), (shift[0] / rho, shift[1] / rho)))
+    return lifts
+
+
+def _lift(block: torch.Tensor, alpha: torch.Tensor, pixel: torch.Tensor, step: np.ndarray,
+          height: int, width: int):
+    """The fewest raster px along ``step (2,)`` (x, y) that leave at most ``CLEAR`` of
+    ``alpha (m,)`` at ``pixel (m,)`` (flat indices of an ``(height, width)`` raster) on
+    ``block (S,)``; off the raster counts as blocked. None where no distance clears it."""
+    row, col = pixel // width, pixel % width
+    total = float(alpha.sum())
+    if total <= 0:
+        return None
+    for first in range(1, max(height, width) + 1, CHUNK):
+        distance = np.arange(first, first + CHUNK)
+        dy = torch.as_tensor(np.rint(distance * step[1]).astype(np.int64), device=pixel.device)
+        dx = torch.as_tensor(np.rint(distance * step[0]).astype(np.int64), device=pixel.device)
+        r, c = row[None] + dy[:, None], col[None] + dx[:, None]                 # (CHUNK, m)
+        on = (r >= 0) & (r < height) & (c >= 0) & (c < width)
+        covered = torch.where(on, block[(r * width + c).clamp(0, block.numel() - 1)],
+                              torch.ones((), dtype=block.dtype, device=block.device))
+        clear = ((covered * alpha[None]).sum(1) <= CLEAR * total).cpu().numpy()
+        if clear.any():
+            return int(distance[np.argmax(clear)])
+        if not on.any():
+            return None
+    return None
