@@ -1,6 +1,7 @@
 """Surface: a mark buried in its stratum's obstacle (a large mark of a lower layer rolled over
-it) is lifted back onto the surface against its pull, lowest stratum first (issue 18,
-part 3); a mark on the surface, or one no spot clears, stays."""
+it) is lifted back onto the surface against its pull, or a little aside where a wall is in
+the way, lowest stratum first (issue 18, part 3); a mark on the surface, or one no spot
+clears, stays."""
 import numpy as np
 import pandas as pd
 import pytest
@@ -26,8 +27,8 @@ def square(unit: int, rows: range, cols: range):
 
 
 def stack_terms(outside=None) -> CanvasTerms:
-    """Three layers on a ``(H, W)`` raster under a downward pull: 1 rests on 0, 2 on 1."""
-    rests = torch.tensor([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=torch.float64)
+    """Three layers on a ``(H, W)`` raster under a downward pull: 1 rests on 0, 2 on both."""
+    rests = torch.tensor([[0, 0, 0], [1, 0, 0], [1, 1, 0]], dtype=torch.float64)
     zero = torch.zeros(3, H * W, dtype=torch.float64)
     return CanvasTerms(penalty=zero, outside=zero if outside is None else outside, inside=zero,
                        blocks=torch.zeros(3, 3, dtype=torch.float64), rests=rests,
@@ -42,21 +43,33 @@ def lifts_of(terms, squares, layer, rho=0.5):
 
 
 def test_a_buried_mark_is_lifted_onto_the_surface_and_the_layer_above_rests_on_it_lifted():
-    squares = [square(0, range(10, 20), range(10, 20)),    # a big mark of layer 0
+    squares = [square(0, range(10, 20), range(0, 40)),     # a wide mark of layer 0
                square(1, range(16, 19), range(14, 17)),    # layer 1, under it
                square(2, range(5, 8), range(30, 33)),      # layer 1, on the surface
                square(3, range(12, 15), range(14, 17))]    # layer 2: clear until 1 is lifted
     lifts = lifts_of(stack_terms(), squares, [0, 1, 1, 2])
-    # 9 raster px up puts unit 1 on rows 7-9, clear of the big mark's top row (10);
-    # unit 3 then lies in unit 1's shadow and goes up above it, to rows 4-6
-    assert lifts == {1: (0.0, -18.0), 3: (0.0, -16.0)}
+    # 9 raster px straight up puts unit 1 on rows 7-9, clear of the wide mark's top row (10);
+    # unit 3 then lies in unit 1's shadow, and 6 px at 30 degrees off straight up clear it
+    # beside unit 1, on the wide mark ((-3, -5) px: rows 7-9, columns 11-13), fewer than
+    # the 8 px straight up
+    assert lifts == {1: (0.0, -18.0), 3: (-6.0, -10.0)}
 
 
 def test_a_mark_no_spot_clears_stays_where_it_is():
     outside = torch.zeros(3, H * W, dtype=torch.float64)
     outside[1].view(H, W)[:10] = 1.0    # its region ends where the obstacle begins
+    outside[1].view(H, W)[:, 20:] = 1.0
+    outside[1].view(H, W)[:, :10] = 1.0
     squares = [square(0, range(10, 40), range(10, 20)), square(1, range(16, 19), range(14, 17))]
     assert lifts_of(stack_terms(outside), squares, [0, 1]) == {}
+
+
+def test_a_mark_under_a_ceiling_is_lifted_aside_where_straight_back_leaves_its_region():
+    outside = torch.zeros(3, H * W, dtype=torch.float64)
+    outside[1].view(H, W)[:10, :20] = 1.0    # a ceiling right above the obstacle
+    squares = [square(0, range(10, 20), range(10, 20)), square(1, range(16, 19), range(14, 17))]
+    # 7 raster px at 60 degrees off straight up, to the right: (6, -4) px, columns 20-22
+    assert lifts_of(stack_terms(outside), squares, [0, 1]) == {1: (12.0, -8.0)}
 
 
 def test_strata_are_lifted_lowest_first_whatever_their_order():

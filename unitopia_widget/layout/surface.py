@@ -5,8 +5,9 @@ obstacle that is flat, full everywhere below their envelope. A mark wholly insid
 large mark of a lower layer rolled over it) gets no gradient out of it, and its force
 presses it further in. So a free mark with more than ``BURIED`` of its alpha on its
 obstacle is lifted against its pull (back along a directional sweep, out from the point
-that pulls it), by whole raster px, the least distance that leaves at most ``CLEAR`` of its
-alpha on the obstacle or outside its region. Layers are lifted lowest stratum first, each
+that pulls it, or up to 60 degrees aside: a wall may slope across straight back), by whole
+raster px, the least distance that leaves at most ``CLEAR`` of its alpha on the obstacle or
+outside its region. Layers are lifted lowest stratum first, each
 against the surface as the layers below it were lifted; a mark is not cleared of its own
 layer (the gradient parts it from its neighbours), nor lifted where no spot clears it.
 """
@@ -20,6 +21,7 @@ from .strata import RadialShadow
 BURIED = 0.5   # share of a mark's alpha on its obstacle above which it is lifted
 CLEAR = 0.01   # share of its alpha a lifted mark may keep on the obstacle or outside
 CHUNK = 32     # lift distances tried at once, raster px
+FAN = (0.0, -np.pi / 6, np.pi / 6, -np.pi / 3, np.pi / 3)   # lift directions, off straight back
 
 
 def strata_order(rests: np.ndarray) -> list:
@@ -77,17 +79,29 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
             .index_add_(0, owner, values * block[index.long()])
         share = (on / drawn.clamp_min(1e-6)).cpu().numpy()
         lifting = mine[share[mine] > BURIED]
-        for unit, step in zip(lifting, against(sweep, center[lifting])):
+        for unit, back in zip(lifting, against(sweep, center[lifting])):
             samples = order[starts[unit]:starts[unit + 1]]
             alpha, pixel = values[samples], index[samples].long()
-            distance = _lift(block, alpha, pixel, step, height, width)
-            if distance is None:
+            found = [(d, step) for step in _fan(back)
+                     for d in [_lift(block, alpha, pixel, step, height, width)] if d is not None]
+            if not found:
                 continue
+            distance, step = min(found, key=lambda f: f[0])
             shift = np.rint(distance * step).astype(int)
             moved = pixel + int(shift[1]) * width + int(shift[0])
             own[a].index_add_(0, pixel, -alpha).index_add_(0, moved, alpha)
             lifts.append((int(unit), (shift[0] / rho, shift[1] / rho)))
     return lifts
+
+
+def _fan(back: np.ndarray) -> list:
+    """Directions ``(2,)`` within ``FAN`` of ``back (2,)``, straight back first: a mark
+    wedged against a sloping wall clears the obstacle a little aside from straight back."""
+    out = []
+    for turn in FAN:
+        c, s = np.cos(turn), np.sin(turn)
+        out.append(np.array([c * back[0] - s * back[1], s * back[0] + c * back[1]]))
+    return out
 
 
 def _lift(block: torch.Tensor, alpha: torch.Tensor, pixel: torch.Tensor, step: np.ndarray,
