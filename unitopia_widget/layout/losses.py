@@ -91,10 +91,32 @@ class CanvasTerms:
         resting = (self.rests.to(own) @ own).clamp_(max=1.0)
         for a, sweep in enumerate(self.sweeps):
             if sweep is not None and bool(self.rests[a].any()):
-                ink = resting[a].view(self.shape)
-                swept = sweep(ink) if isinstance(sweep, RadialShadow) else shadow(ink, *sweep)
-                obstacle[a] += swept.reshape(-1)
+                obstacle[a] += self.swept(sweep, resting[a])
         return obstacle
+
+    def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
+        """``(S,)`` row ``a`` of ``obstacles(own)``, computed alone (one sweep, not ``L``)."""
+        obstacle = self.blocks[a].to(own) @ own if self.any_blocks else torch.zeros_like(own[a])
+        sweep = self.sweeps[a] if self.sweeps else None
+        if self.rests is not None and sweep is not None and bool(self.rests[a].any()):
+            obstacle = obstacle + self.swept(sweep, (self.rests[a].to(own) @ own).clamp_(max=1.0))
+        return obstacle
+
+    def swept(self, sweep, ink: torch.Tensor) -> torch.Tensor:
+        """``(S,)`` the flat ``ink (S,)`` swept along ``sweep`` (see ``sweeps``)."""
+        ink = ink.view(self.shape)
+        return (sweep(ink) if isinstance(sweep, RadialShadow) else shadow(ink, *sweep)).reshape(-1)
+
+    def coverage(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
+                 layer: torch.Tensor):
+        """``(flat (M,), own (L, S))``: each sample's index into the stacked slabs, and each
+        layer's coverage; ``values``, ``index``, ``owner`` ``(M,)`` as from
+        ``render_samples``, ``layer (N,)`` each unit's layer (long)."""
+        n_layers, size = self.penalty.shape
+        flat = index.long() + layer[owner] * size
+        own = torch.zeros(n_layers * size, dtype=values.dtype, device=values.device) \
+            .index_add_(0, flat, values).view(n_layers, size)
+        return flat, own
 
     def unit_overlap(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
                      layer: torch.Tensor, n_units: int) -> torch.Tensor:
@@ -102,11 +124,8 @@ class CanvasTerms:
         a sample's alpha times ``relu(T - 1) / T`` at its pixel, ``T = C + O`` of its layer
         (as the forward has it). ``values``, ``index``, ``owner`` ``(M,)`` as from
         ``render_samples``; ``layer (N,)`` each unit's layer (long)."""
-        n_layers, size = self.penalty.shape
-        sample_layer = layer[owner]
-        flat = index.long() + sample_layer * size
-        own = torch.zeros(n_layers * size, dtype=values.dtype, device=values.device) \
-            .index_add_(0, flat, values).view(n_layers, size)
+        n_layers = self.penalty.shape[0]
+        flat, own = self.coverage(values, index, owner, layer)
         total = own + self.obstacles(own) if n_layers > 1 and self.has_obstacles else own
         at = total.reshape(-1)[flat]
         over = values * torch.relu(at - 1.0) / at.clamp_min(1e-6)

@@ -101,8 +101,7 @@ def uncross(p, ctl: Scales, place: Placement, optimizer, values, index, owner) -
 def resurface(p, place: Placement, optimizer, values, index, owner) -> bool:
     """Lift the free marks buried in their stratum's obstacle back onto its surface
     (``surface.py``) and forget their Adam momentum. Returns whether any moved."""
-    rests = p.terms.rests
-    if rests is None or not p.terms.has_obstacles or not bool(rests.any()):
+    if p.terms.rests is None:   # no layer rests on another (the engine leaves it None)
         return False
     with torch.no_grad():
         center = place.transforms()[0].cpu().numpy().astype(float)

@@ -56,12 +56,9 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
     ``index``, ``owner`` ``(M,)`` the rendered samples (``render_samples``), ``layer (N,)``
     each unit's layer, ``center (N, 2)`` canvas px, ``free (N,)`` bool, ``rho`` raster px
     per canvas px; ``terms`` the ``CanvasTerms`` (its rests, sweeps, outside)."""
-    n_layers, size = terms.penalty.shape
     height, width = terms.shape
-    layer_t = torch.as_tensor(layer, device=values.device, dtype=torch.long)
-    flat = index.long() + layer_t[owner] * size
-    own = torch.zeros(n_layers * size, dtype=values.dtype, device=values.device) \
-        .index_add_(0, flat, values).view(n_layers, size)
+    _, own = terms.coverage(values, index, owner,
+                            torch.as_tensor(layer, device=values.device, dtype=torch.long))
     order = torch.argsort(owner, stable=True)
     counts = torch.bincount(owner, minlength=len(layer)).cpu().numpy()
     starts = np.concatenate([[0], np.cumsum(counts)])
@@ -69,12 +66,10 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
     lifts = []
     for a in strata_order(terms.rests.cpu().numpy() > 0):
         sweep = terms.sweeps[a]
-        if sweep is None:
-            continue
-        block = torch.maximum(terms.obstacles(own)[a].clamp(max=1.0), terms.outside[a].to(own))
         mine = np.nonzero((layer == a) & free)[0]
-        if not len(mine):
+        if sweep is None or not len(mine):
             continue
+        block = torch.maximum(terms.obstacle(own, a).clamp(max=1.0), terms.outside[a].to(own))
         on = torch.zeros(len(layer), dtype=values.dtype, device=values.device) \
             .index_add_(0, owner, values * block[index.long()])
         share = (on / drawn.clamp_min(1e-6)).cpu().numpy()
