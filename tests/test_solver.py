@@ -11,7 +11,7 @@ from scipy.spatial import cKDTree
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.scales import Scales
-from unitopia_widget.layout.schedule import BestLoss
+from unitopia_widget.layout.schedule import BestLoss, Rest, StartPolish
 from unitopia_widget.layout.solver import Problem, Result, solve
 
 CX, CY, R = 400.0, 250.0, 200.0
@@ -257,3 +257,26 @@ def test_the_settle_counts_a_loss_no_better_by_a_thousandth_of_its_size_as_no_im
         BestLoss()(s)
         assert s.since_best == since
     assert s.best == sign * 1.0 - 5e-3
+
+
+def test_the_settle_under_forces_goes_on_while_one_mark_still_falls():
+    # a pile's loss is noisy: it stalled for a patience window while the pile's last marks
+    # still fell, at rest on average and by its tenth, and they were left hanging mid-air
+    n = 40
+    now = torch.zeros(n, 2)
+    p = SimpleNamespace(settle_motion=0.75, patience=12, max_iterations=600,
+                        polish_iterations=60, polish_shrink=0.01)
+    s = SimpleNamespace(p=p, place=SimpleNamespace(transforms=lambda: (now, None)),
+                        stage=np.zeros(n, int), poured=0, window_start=now.clone(),
+                        force_layers=[([0], [uw.DirectionalForce(90)])], radius=1.0,
+                        travelling=False, straggling=False, calm=True, since_best=12,
+                        iteration=100, phase="settle",
+                        ctl=SimpleNamespace(log=np.zeros(1), free=np.ones(1, bool)))
+    now[:, 1] += 0.2
+    now[0, 1] += 1.0                      # one mark falls 1.2 radii over the window
+    Rest()(s)
+    assert not s.travelling and not s.straggling and not s.calm
+    assert not StartPolish()(s) and s.phase == "settle"
+    now[:, 1] += 0.2                      # the next window every mark rests
+    Rest()(s)
+    assert s.calm and StartPolish()(s) and s.phase == "polish"

@@ -203,14 +203,21 @@ def test_piles_grown_into_one_another_block_the_gaps_on_the_border_between_them(
 
 
 @pytest.mark.parametrize("dim, reverse", [(0, False), (0, True), (1, False), (1, True)])
-def test_a_shadow_holds_the_most_ink_at_or_before_each_pixel_along_its_sweep(dim, reverse):
-    """Down, up, right and left: the running maximum along the raster axis (a scan along
-    rows is run on the transposed raster, where it runs along memory)."""
-    ink = torch.rand(7, 5, generator=torch.Generator().manual_seed(dim + 2 * reverse))
+def test_a_shadow_holds_the_ink_at_or_before_each_pixel_along_its_sweep_summed_up_to_one(dim, reverse):
+    """Down, up, right and left, on two slabs at once: the running sum along the raster axis,
+    clamped at a full pixel; on ink of whole pixels, the running maximum (below the
+    envelope)."""
+    ink = torch.rand(2, 7, 5, generator=torch.Generator().manual_seed(dim + 2 * reverse)) * 0.4
+    ink[1] = (ink[1] > 0.3).to(ink.dtype)   # whole pixels
     ref = ink.numpy()
     if reverse:
-        ref = np.flip(ref, dim)
-    ref = np.maximum.accumulate(ref, axis=dim)
+        ref = np.flip(ref, dim + 1)
+    ref = np.minimum(np.cumsum(ref, axis=dim + 1), 1.0)
     if reverse:
-        ref = np.flip(ref, dim)
-    np.testing.assert_array_equal(shadow(ink, dim, reverse).numpy(), ref)
+        ref = np.flip(ref, dim + 1)
+    out = shadow(ink, dim, reverse).numpy()
+    np.testing.assert_allclose(out, ref, rtol=1e-6, atol=1e-6)
+    whole = np.flip(ink[1].numpy(), dim) if reverse else ink[1].numpy()
+    whole = np.maximum.accumulate(whole, axis=dim)
+    np.testing.assert_array_equal(out[1], np.flip(whole, dim) if reverse else whole)
+    assert (out[0] < 1.0).any() and (out[0] == 1.0).any()   # the sum fills up along the sweep

@@ -21,12 +21,14 @@ pixel:
 
 All terms are divided by ``terms.norm`` (the marks' footprint area, held
 constant during a phase) so the loss reads as a fraction of the marks' area.
-The samples are scattered into the slabs once; every term and the per-pixel
-gradient are then dense, contiguous passes over the ``(L, S)`` slabs (the
-raster is capped in size), and the backward gathers the pixel gradient at the
-sample indices: one scatter and one gather of ``M`` samples per iteration,
-with no autograd through the canvas. Nothing is read back to the host: the
-per-layer sums stay on the device (``terms.sums``) for the solver to fetch.
+The samples are scattered into the slabs once, and the obstacles are dense
+passes over the ``(L, S)`` slabs; every term is then read at the samples
+alone (a term is zero where a layer has no ink): each sample gathers its
+pixel's total ``T`` and fixed tables, and holds the share ``alpha / T`` of its
+pixel's terms, so the sums over samples are the sums over pixels, and the
+pixel gradient is the sample's gradient, with no autograd through the canvas.
+Nothing is read back to the host: the per-layer sums stay on the device
+(``terms.sums``) for the solver to fetch.
 """
 from __future__ import annotations
 
@@ -59,7 +61,8 @@ class CanvasTerms:
     #: drawn alpha, covered container), in raster px^2
     sums: torch.Tensor | None = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
-    _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
+    _tables: torch.Tensor | None = None        # fixed per-pixel tables, see ``tables``
+    _onehot: tuple | None = None               # (layer, its one-hot), see ``per_layer``
 
     @functools.cached_property
     def inside_total(self) -> float:
@@ -81,6 +84,17 @@ class CanvasTerms:
         """Whether some layer blocks on another (read once: the blocks are fixed)."""
         return self.any_blocks or (self.rests is not None and bool(self.rests.any()))
 
+    @functools.cached_property
+    def sweep_groups(self) -> tuple:
+        """``((sweep, layers), ...)``: the layers that rest on others, grouped by their sweep
+        (layers swept alike are swept in one scan); read once: the rests are fixed."""
+        groups = {}
+        for a, sweep in enumerate(self.sweeps):
+            if sweep is not None and self.rests is not None and bool(self.rests[a].any()):
+                groups.setdefault(sweep, (sweep, []))[1].append(a)
+        device = self.penalty.device
+        return tuple((sweep, torch.tensor(rows, device=device)) for sweep, rows in groups.values())
+
     def obstacles(self, own: torch.Tensor) -> torch.Tensor:
         """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
         on, and the shadow of those it rests on (see the module docstring)."""
@@ -89,9 +103,9 @@ class CanvasTerms:
         if self.rests is None:
             return obstacle
         resting = (self.rests.to(own) @ own).clamp_(max=1.0)
-        for a, sweep in enumerate(self.sweeps):
-            if sweep is not None and bool(self.rests[a].any()):
-                obstacle[a] += self.swept(sweep, resting[a])
+        for sweep, rows in self.sweep_groups:
+            ink = resting.index_select(0, rows).view(len(rows), *self.shape)
+            obstacle.index_add_(0, rows, self.swept(sweep, ink).reshape(len(rows), -1))
         return obstacle
 
     def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
@@ -99,13 +113,15 @@ class CanvasTerms:
         obstacle = self.blocks[a].to(own) @ own if self.any_blocks else torch.zeros_like(own[a])
         sweep = self.sweeps[a] if self.sweeps else None
         if self.rests is not None and sweep is not None and bool(self.rests[a].any()):
-            obstacle = obstacle + self.swept(sweep, (self.rests[a].to(own) @ own).clamp_(max=1.0))
+            ink = (self.rests[a].to(own) @ own).clamp_(max=1.0).view(self.shape)
+            obstacle = obstacle + self.swept(sweep, ink).reshape(-1)
         return obstacle
 
     def swept(self, sweep, ink: torch.Tensor) -> torch.Tensor:
-        """``(S,)`` the flat ``ink (S,)`` swept along ``sweep`` (see ``sweeps``)."""
-        ink = ink.view(self.shape)
-        return (sweep(ink) if isinstance(sweep, RadialShadow) else shadow(ink, *sweep)).reshape(-1)
+        """``ink (..., H, W)`` swept along ``sweep`` (see ``sweeps``)."""
+        if isinstance(sweep, RadialShadow):   # made for one (H, W) slab
+            return torch.stack([sweep(one) for one in ink.reshape(-1, *self.shape)]).view(ink.shape)
+        return shadow(ink, *sweep)
 
     def coverage(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
                  layer: torch.Tensor):
@@ -146,20 +162,26 @@ class CanvasTerms:
             self._tables = None
         return self._cover
 
-    def tables(self) -> tuple:
-        """Fixed per-pixel tables (made once, in the buffer's dtype and device):
-        ``fields (L, 4, S)`` penalty, outside, inside, 1 (one pass sums all four against
-        the coverage), the pixel gradient where the total is at most 1 (``base (L, S)``),
-        and what an over-full pixel adds (a number) and an under-full one takes away
-        (``fill (L, S)``, None without fill); everything divided by the norm."""
+    def tables(self) -> torch.Tensor:
+        """``(L * S, 3)`` fixed per-pixel tables, one row per pixel of the stacked slabs (a
+        sample gathers its row at once): the containment penalty, the outside share and the
+        fill target; made once, in the buffer's dtype and device."""
         if self._tables is None:
-            like = self._cover
-            penalty, outside, inside = (t.to(like) for t in (self.penalty, self.outside, self.inside))
-            fields = torch.stack([penalty, outside, inside, torch.ones_like(penalty)], dim=1)
-            base = self.w_contain * penalty / self.norm
-            fill = self.w_fill * inside / self.norm if self.w_fill else None
-            self._tables = (fields, base, self.w_overlap / self.norm, fill)
+            self._tables = torch.stack([self.penalty, self.outside, self.inside], dim=-1) \
+                .to(self._cover).reshape(-1, 3).contiguous()
         return self._tables
+
+    def per_layer(self, rows: torch.Tensor, layer: torch.Tensor | None) -> torch.Tensor:
+        """``(K, L)`` the per-sample ``rows (K, M)`` summed over each layer's samples
+        (``layer (M,)`` long, or None with one layer), as a product with the samples' layer
+        one-hot ``(M, L)``: made once per ``layer`` tensor (the solver keeps one per plan)."""
+        n_layers = self.penalty.shape[0]
+        if layer is None or n_layers == 1:
+            return rows.sum(1, keepdim=True)
+        if self._onehot is None or self._onehot[0] is not layer or self._onehot[1].dtype != rows.dtype:
+            hot = torch.zeros(len(layer), n_layers, dtype=rows.dtype, device=rows.device)
+            self._onehot = (layer, hot.scatter_(1, layer[:, None], 1.0))
+        return rows @ self._onehot[1]
 
 
 def shares(sums, inside_total: float) -> dict:
@@ -190,36 +212,29 @@ class CanvasLoss(torch.autograd.Function):
         flat = index if layer is None or n_layers == 1 else layer * size + index
         cover = terms.buffer(values)
         cover.index_add_(0, flat, values)
-        own = cover.view(n_layers, size)
-        fields, base, over, fill = terms.tables()
-        # contain, outside, inside . C and drawn alpha per layer: one pass over the slabs
-        per = torch.bmm(fields, own[:, :, None])[..., 0]                       # (L, 4)
+        total = cover.index_select(0, flat)                                     # T = C + O
         if n_layers > 1 and terms.has_obstacles:
-            total = own + terms.obstacles(own)                                  # T = C + O
-            spill = torch.relu(total - 1.0)
-            share = own / total.clamp_min(1e-6)
-            excess = share * spill                                              # the layer's share
-            overlap = excess.sum(1)
-            # the container covered: none without a closed layer to fill (inside is all 0)
-            covered = (share * fields[:, 2] * total.clamp(max=1.0)).sum(1) if terms.inside_total > 0 \
-                else torch.zeros(n_layers, dtype=own.dtype, device=own.device)
-        else:
-            total = own
-            spill = excess = (own - 1.0).clamp_min_(0.0)
-            # overlap and inside . excess: the container covered is inside . min(C, 1)
-            spilled = torch.bmm(fields[:, 2:], excess[:, :, None])[..., 0]      # (L, 2)
-            overlap, covered = spilled[:, 1], per[:, 2] - spilled[:, 0]
-        terms.sums = torch.stack([overlap, per[:, 1], per[:, 3], covered]).detach()
-        gap = terms.inside_total - covered.sum()
-        loss = (terms.w_overlap * overlap.sum() + terms.w_contain * per[:, 0].sum()
-                + terms.w_fill * gap) / terms.norm
-        # the pixel gradient, already divided by the norm, gathered at the samples; sign()
-        # of the spill (1 over full, 0 else) instead of where(): a third of the time on a CPU
-        pixel_grad = torch.add(base, torch.sign(spill), alpha=over)
-        if fill is not None:
-            pixel_grad.addcmul_(fill, torch.sign((1.0 - total).clamp_min_(0.0)), value=-1.0)
-        ctx.save_for_backward(pixel_grad.reshape(-1).index_select(0, flat))
+            total += terms.obstacles(cover.view(n_layers, size)).reshape(-1).index_select(0, flat)
         cover.zero_()                                                           # leave the buffer zeroed
+        penalty, outside, inside = terms.tables().index_select(0, flat).unbind(1)
+        spill = torch.relu(total - 1.0)
+        share = values / total.clamp_min(1e-6)   # the sample's share of its pixel, per unit of T
+        # per layer: overlap (its share of the spill), outside, drawn alpha, the container
+        # covered (its share of inside . min(T, 1)), and the containment cost
+        sums = terms.per_layer(torch.stack([share * spill, values * outside, values,
+                                            share * inside * total.clamp(max=1.0),
+                                            values * penalty]), layer)         # (5, L)
+        terms.sums = sums[:4].detach()
+        gap = terms.inside_total - sums[3].sum()
+        loss = (terms.w_overlap * sums[0].sum() + terms.w_contain * sums[4].sum()
+                + terms.w_fill * gap) / terms.norm
+        # each sample's pixel gradient, divided by the norm; sign() of the spill (1 over full,
+        # 0 else) instead of where(): a third of the time on a CPU
+        grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm) \
+            .add_(penalty, alpha=terms.w_contain / terms.norm)
+        if terms.w_fill:
+            grad.addcmul_(inside, torch.sign((1.0 - total).clamp_min_(0.0)), value=-terms.w_fill / terms.norm)
+        ctx.save_for_backward(grad)
         return loss
 
     @staticmethod
