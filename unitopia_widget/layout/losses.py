@@ -134,16 +134,23 @@ class CanvasTerms:
             .index_add_(0, flat, values).view(n_layers, size)
         return flat, own
 
+    def totals(self, cover: torch.Tensor, flat: torch.Tensor) -> torch.Tensor:
+        """``(M,)`` the total ``T = C + O`` at each sample's pixel, from the flat coverage
+        ``cover (L * S,)`` and the samples' indices into it ``flat (M,)``."""
+        total = cover.index_select(0, flat)
+        n_layers, size = self.penalty.shape
+        if n_layers > 1 and self.has_obstacles:
+            total += self.obstacles(cover.view(n_layers, size)).reshape(-1).index_select(0, flat)
+        return total
+
     def unit_overlap(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
                      layer: torch.Tensor, n_units: int) -> torch.Tensor:
         """``(N,)`` each unit's share of the overlap the loss counts, in raster px^2 of alpha:
         a sample's alpha times ``relu(T - 1) / T`` at its pixel, ``T = C + O`` of its layer
         (as the forward has it). ``values``, ``index``, ``owner`` ``(M,)`` as from
         ``render_samples``; ``layer (N,)`` each unit's layer (long)."""
-        n_layers = self.penalty.shape[0]
         flat, own = self.coverage(values, index, owner, layer)
-        total = own + self.obstacles(own) if n_layers > 1 and self.has_obstacles else own
-        at = total.reshape(-1)[flat]
+        at = self.totals(own.reshape(-1), flat)
         over = values * torch.relu(at - 1.0) / at.clamp_min(1e-6)
         return torch.zeros(n_units, dtype=values.dtype, device=values.device).index_add_(0, owner, over)
 
@@ -212,9 +219,7 @@ class CanvasLoss(torch.autograd.Function):
         flat = index if layer is None or n_layers == 1 else layer * size + index
         cover = terms.buffer(values)
         cover.index_add_(0, flat, values)
-        total = cover.index_select(0, flat)                                     # T = C + O
-        if n_layers > 1 and terms.has_obstacles:
-            total += terms.obstacles(cover.view(n_layers, size)).reshape(-1).index_select(0, flat)
+        total = terms.totals(cover, flat)                                       # T = C + O
         cover.zero_()                                                           # leave the buffer zeroed
         penalty, outside, inside = terms.tables().index_select(0, flat).unbind(1)
         spill = torch.relu(total - 1.0)
