@@ -45,7 +45,8 @@ class State:
     rounds: int = 0                # legalising rounds so far
     last_overlap: float = math.inf
     straggling: bool = False       # a tenth of the marks still travel, though most rest
-    calm: bool = False             # no mark travelled settle_motion mean radii in the window
+    calm: bool = False             # no mark travelled settle_motion mean radii two windows running
+    moving: torch.Tensor | None = None   # (N,) bool, marks that travelled that far last window
     poured: int = 0                # the last stage poured
     poured_at: int = 0
     room: np.ndarray | None = None   # (G,) bool, groups whose closed containers have room
@@ -206,10 +207,11 @@ class Resurface(Rule):
 class Rest(Rule):
     """Each settle window, on layouts with forces: marks rest when the mean travel of the
     stage being poured over the window is under ``settle_motion`` mean radii (a tenth still
-    travelling, or one mark still falling that far, keeps the settle going). On coming to
-    rest the pull weakens, so the best loss is reset and Adam's moments are scaled with the
-    force (marks still in the air keep falling at pace). Needed by emitters and pouring.
-    Acts when the marks come to rest."""
+    travelling, or one mark still falling that far, keeps the settle going: a mark falls when
+    it travels that far in two windows running, as the jitter of a large pile does not). On
+    coming to rest the pull weakens, so the best loss is reset and Adam's moments are scaled
+    with the force (marks still in the air keep falling at pace). Needed by emitters and
+    pouring. Acts when the marks come to rest."""
 
     name = "rest"
     window = True
@@ -223,7 +225,10 @@ class Rest(Rule):
         moved = float(travel.mean())
         s.straggling = bool(s.force_layers) and \
             float(torch.quantile(travel, 0.9)) > p.settle_motion * s.radius
-        s.calm = float(travel.max()) <= p.settle_motion * s.radius
+        moving = torch.zeros(len(now), dtype=torch.bool, device=now.device)
+        moving[pouring] = travel > p.settle_motion * s.radius
+        s.calm = s.moving is not None and not bool((moving & s.moving).any())
+        s.moving = moving
         came_to_rest = s.travelling and moved <= p.settle_motion * s.radius and bool(s.force_layers)
         if came_to_rest:
             s.best, s.since_best = math.inf, 0
@@ -252,9 +257,9 @@ class Pour(Rule):
 
 class StartPolish(Rule):
     """End the settle phase when the loss stopped improving for ``patience`` iterations and
-    the marks rest (under forces: no mark travelled ``settle_motion`` mean radii over the
-    window, ``State.calm``; a pile's noisy loss can stall while its last marks still fall),
-    or when only the polishing iterations are left: controlled scales shrink by
+    the marks rest (under forces: no mark travelled ``settle_motion`` mean radii in each of
+    the last two windows, ``State.calm``; a pile's noisy loss can stall while its last marks
+    still fall), or when only the polishing iterations are left: controlled scales shrink by
     ``polish_shrink`` and freeze. Every design ends its settle here."""
 
     name = "start-polish"
