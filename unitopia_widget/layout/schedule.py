@@ -221,19 +221,19 @@ class Rest(Rule):
         with torch.no_grad():
             now = s.place.transforms()[0].detach().clone()
         pouring = torch.as_tensor(s.stage == s.poured, device=now.device)
-        travel = (now - s.window_start).norm(dim=1)[pouring]
+        distance = (now - s.window_start).norm(dim=1)
+        travel = distance[pouring]
+        bar = p.settle_motion * s.radius
         moved = float(travel.mean())
-        s.straggling = bool(s.force_layers) and \
-            float(torch.quantile(travel, 0.9)) > p.settle_motion * s.radius
-        moving = torch.zeros(len(now), dtype=torch.bool, device=now.device)
-        moving[pouring] = travel > p.settle_motion * s.radius
+        s.straggling = bool(s.force_layers) and float(torch.quantile(travel, 0.9)) > bar
+        moving = pouring & (distance > bar)
         s.calm = s.moving is not None and not bool((moving & s.moving).any())
         s.moving = moving
-        came_to_rest = s.travelling and moved <= p.settle_motion * s.radius and bool(s.force_layers)
+        came_to_rest = s.travelling and moved <= bar and bool(s.force_layers)
         if came_to_rest:
             s.best, s.since_best = math.inf, 0
             rescale_moments(s.optimizer, s.place.t, p.force_weight / p.force_travel)
-        s.travelling = moved > p.settle_motion * s.radius
+        s.travelling = moved > bar
         s.window_start = now
         return came_to_rest
 
@@ -257,7 +257,7 @@ class Pour(Rule):
 
 class StartPolish(Rule):
     """End the settle phase when the loss stopped improving for ``patience`` iterations and
-    the marks rest (under forces: no mark travelled ``settle_motion`` mean radii in each of
+    the marks rest (under forces: no mark travelled ``settle_motion`` mean radii in both of
     the last two windows, ``State.calm``; a pile's noisy loss can stall while its last marks
     still fall), or when only the polishing iterations are left: controlled scales shrink by
     ``polish_shrink`` and freeze. Every design ends its settle here."""
