@@ -206,9 +206,11 @@ def test_piles_grown_into_one_another_block_the_gaps_on_the_border_between_them(
 def test_a_shadow_holds_the_ink_at_or_before_each_pixel_along_its_sweep_summed_up_to_one(dim, reverse):
     """Down, up, right and left, on two slabs at once: the running sum along the raster axis,
     clamped at a full pixel; on ink of whole pixels, the running maximum (below the
-    envelope)."""
-    ink = torch.rand(2, 7, 5, generator=torch.Generator().manual_seed(dim + 2 * reverse)) * 0.4
-    ink[1] = (ink[1] > 0.3).to(ink.dtype)   # whole pixels
+    envelope). 37 rows: the scan down the columns runs in blocks (``SCAN_BLOCK``), so
+    the sums carry across two block borders and a padded last block."""
+    rng = torch.Generator().manual_seed(dim + 2 * reverse)
+    ink = torch.rand(2, 37, 21, generator=rng) * 0.1
+    ink[1] = (torch.rand(37, 21, generator=rng) > 0.8).to(ink.dtype)   # whole pixels
     ref = ink.numpy()
     if reverse:
         ref = np.flip(ref, dim + 1)

@@ -86,26 +86,26 @@ class CanvasTerms:
 
     @functools.cached_property
     def sweep_groups(self) -> tuple:
-        """``((sweep, layers), ...)``: the layers that rest on others, grouped by their sweep
-        (layers swept alike are swept in one scan); read once: the rests are fixed."""
+        """``((sweep, layers, rows), ...)``: the layers that rest on others, grouped by their
+        sweep (layers swept alike are swept in one scan), as a device tensor and as ints; read
+        once: the rests are fixed."""
         groups = {}
         for a, sweep in enumerate(self.sweeps):
             if sweep is not None and self.rests is not None and bool(self.rests[a].any()):
                 groups.setdefault(sweep, (sweep, []))[1].append(a)
         device = self.penalty.device
-        return tuple((sweep, torch.tensor(rows, device=device)) for sweep, rows in groups.values())
+        return tuple((sweep, torch.tensor(rows, device=device), tuple(rows)) for sweep, rows in groups.values())
 
     def obstacles(self, own: torch.Tensor) -> torch.Tensor:
         """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
         on, and the shadow of those it rests on (see the module docstring)."""
         # blocks is all zeros where every layer rests (a stack): skip its product
         obstacle = self.blocks.to(own) @ own if self.any_blocks else torch.zeros_like(own)
-        if self.rests is None:
-            return obstacle
-        resting = (self.rests.to(own) @ own).clamp_(max=1.0)
-        for sweep, rows in self.sweep_groups:
-            ink = resting.index_select(0, rows).view(len(rows), *self.shape)
-            obstacle.index_add_(0, rows, self.swept(sweep, ink).reshape(len(rows), -1))
+        for sweep, layers, rows in self.sweep_groups:   # only the layers that rest on others
+            ink = (self.rests.index_select(0, layers).to(own) @ own).clamp_(max=1.0)
+            swept = self.swept(sweep, ink.view(len(rows), *self.shape)).reshape(len(rows), -1)
+            for k, a in enumerate(rows):   # a row at a time: index_add_ over rows is slow on a CPU
+                obstacle[a] += swept[k]
         return obstacle
 
     def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
