@@ -11,7 +11,8 @@ import unitopia_widget as uw
 from ink import unit_inks
 from unitopia_widget.layout.placement import Placement
 from unitopia_widget.layout.raster import RasterGrid
-from unitopia_widget.layout.relocate import holes
+from unitopia_widget.design.encodings import footprint
+from unitopia_widget.layout.relocate import hole_need, holes
 from unitopia_widget.layout.room import empty_share
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -93,6 +94,16 @@ def test_holes_send_the_most_overlapped_mark_that_fits_into_the_largest_hole():
     (x, y) = moves[0][1]
     assert 70 <= x <= 80 and 20 <= y <= 30    # the middle of the free right half
     assert np.hypot(moves[1][1][0] - x, moves[1][1][1] - y) >= 5.0   # the first hole is taken
+
+
+def test_a_hole_takes_a_mark_by_the_disc_it_is_packed_as_and_a_thin_one_by_its_length():
+    half_w, half_h = np.array([6.0, 10.0, 2.0]), np.array([10.0, 10.0, 10.0])
+    margin = np.full(3, 0.2)
+    disc = np.array([8.5, 12.0, 5.0])   # start.footprint_radius: a drop, a disc, a strand
+    need = hole_need(half_w, half_h, margin, disc)
+    assert need[0] == 8.5 < 10.0 * footprint(0.2)   # a drop fits by its disc, not its height
+    assert need[1] == 12.0
+    assert need[2] == pytest.approx(10.0 * footprint(0.2))   # no disc stands for a strand
 
 
 def test_a_heavy_tailed_closed_layout_leaves_no_room_for_a_typical_mark():

@@ -351,7 +351,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
-                   reach=_reach(units), ink_share=units.ink_share,
+                   reach=_reach(units), disc=footprint_radius(units), ink_share=units.ink_share,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
                    regions=tuple(layer.region for layer in layers))

@@ -10,7 +10,7 @@ import torch
 from ..design.encodings import footprint
 from .pack import thin
 from .placement import Placement
-from .relocate import holes, unit_overlap
+from .relocate import hole_need, holes, unit_overlap
 from .scales import Scales
 from .surface import buried
 from .uncross import ink_pairs, turns
@@ -42,8 +42,7 @@ def relocate(p, ctl: Scales, place: Placement, optimizer, room: np.ndarray,
     inside = p.terms.inside_host
     scale = ctl.unit_scale()
     reach = p.reach * scale * p.grid.rho
-    # the disc a mark's footprint needs at any angle: its long half side, with margin
-    radius = np.maximum(p.half_w, p.half_h) * footprint(p.margin) * scale * p.grid.rho
+    radius = hole_need(p.half_w, p.half_h, p.margin, p.disc) * scale * p.grid.rho
     free, moved = movable(place), False
     for g in np.nonzero(room)[0]:
         for layer in np.nonzero(ctl.group == g)[0]:

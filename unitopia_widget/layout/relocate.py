@@ -4,7 +4,8 @@ Gradients only act where a mark's footprint lies, so a mark pressed into a
 crowd never sees a hole a few radii away. Between settle windows the solver
 moves the most overlapped marks that fit into the largest holes: a hole is a
 container pixel free of ink, its size the distance to the nearest ink or to
-the container's edge (the same room ``room.py`` measures).
+the container's edge (the same room ``room.py`` measures). A mark fits a hole
+as large as the disc the start packs it as (``hole_need``).
 """
 from __future__ import annotations
 
@@ -12,7 +13,20 @@ import numpy as np
 import torch
 from scipy import ndimage
 
+from ..design.encodings import footprint
+from .pack import thin
 from .raster import RasterGrid
+
+
+def hole_need(half_w: np.ndarray, half_h: np.ndarray, margin: np.ndarray,
+              disc: np.ndarray) -> np.ndarray:
+    """``(N,)`` the size of hole each mark fits, at scale 1, canvas px: the disc the start
+    packs it as (``disc``, ``start.footprint_radius``: area-equivalent, widened for shapes
+    less compact than a disc, margins included); a thin mark (``pack.thin``), which no disc
+    stands for, needs its long half side with margin. ``half_w``, ``half_h``: box half sides
+    ``(N,)``, ``margin (N,)``. (A mark's long half side alone kept a teardrop out of the
+    holes its own shape fits: the tips' gaps between large drops stayed empty.)"""
+    return np.where(thin(half_w, half_h), np.maximum(half_w, half_h) * footprint(margin), disc)
 
 
 def unit_overlap(values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,

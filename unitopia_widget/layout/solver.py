@@ -54,6 +54,7 @@ class Problem:
     group_scale: np.ndarray | None = None  # (G,) initial scale per group; None: [scale]
     group_free: np.ndarray | None = None   # (G,) bool, controlled groups; None: [free_scale]
     reach: np.ndarray | None = None        # (N,) ink radius less margin band at scale 1 (room)
+    disc: np.ndarray | None = None         # (N,) the disc a packed footprint needs at scale 1 (start.footprint_radius)
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
     travelling: bool = True        # whether marks start away from where they will rest
