@@ -9,9 +9,9 @@ import torch
 
 import unitopia_widget as uw
 from ink import unit_inks
+from unitopia_widget.design.encodings import footprint
 from unitopia_widget.layout.placement import Placement
 from unitopia_widget.layout.raster import RasterGrid
-from unitopia_widget.design.encodings import footprint
 from unitopia_widget.layout.relocate import hole_need, holes
 from unitopia_widget.layout.room import empty_share
 

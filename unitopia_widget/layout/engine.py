@@ -285,7 +285,8 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
     arrange.snap(start, units, layers, canvas, unit_scale, lambda layer, pts: spot_cost(
         layer, layer.region, canvas, pts), rho_start)
-    footprints = footprint_radius(units) * unit_scale   # (N,) canvas px at the start scale
+    disc = footprint_radius(units)                   # (N,) the packed disc at scale 1
+    footprints = disc * unit_scale                   # (N,) canvas px at the start scale
     anchor = positions.anchors(units, layers, canvas, footprints, rho_start)
     if anchor is not None:
         positions.dodge(start.center, units, layers, canvas, footprints,
@@ -351,7 +352,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
-                   reach=_reach(units), disc=footprint_radius(units), ink_share=units.ink_share,
+                   reach=_reach(units), disc=disc, ink_share=units.ink_share,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
                    regions=tuple(layer.region for layer in layers))
