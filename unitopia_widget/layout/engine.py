@@ -25,6 +25,7 @@ from ..design.encodings import (Encoded, check_column, continuous_values, encode
                                 linear_extent, is_continuous, missing_warning, palette_for,
                                 unhashable, MIN_DRAWN)
 from ..design.groups import mark_choice
+from .heap import held
 from .losses import CanvasTerms
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
@@ -430,13 +431,14 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
     # a fresh, unpinned start is the solver's start: it is shown before the fields are made
     early = on_frame if previous is None and len(pinned) == 0 else None
-    problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
-                            abort=abort, on_start=early)
-    if previous is not None:
-        problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
-    problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
-    result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
-                   frame_every=frame_every, start_frame=early is None)
+    with held():   # the iterations' scratch tensors reuse the heap, not fresh pages
+        problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
+                                abort=abort, on_start=early)
+        if previous is not None:
+            problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
+        problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
+        result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
+                       frame_every=frame_every, start_frame=early is None)
     if result.iterations == 0 and early is None and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")
     table = placements(units, layers, result)
