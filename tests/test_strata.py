@@ -223,3 +223,33 @@ def test_a_shadow_holds_the_ink_at_or_before_each_pixel_along_its_sweep_summed_u
     whole = np.maximum.accumulate(whole, axis=dim)
     np.testing.assert_array_equal(out[1], np.flip(whole, dim) if reverse else whole)
     assert (out[0] < 1.0).any() and (out[0] == 1.0).any()   # the sum fills up along the sweep
+
+
+@pytest.mark.parametrize("sees_ink", [False, True])
+def test_a_stacks_obstacles_are_the_shadows_of_the_layers_below_call_after_call(sees_ink):
+    """``CanvasTerms.obstacles`` on three layers, each resting on those below it, down the
+    columns of 37-row slabs (not whole scan blocks): row a is the shadow of the ink of the
+    layers below a, clamped at a full pixel; the bottom layer's row is 0. The obstacle and
+    the padded ink are buffers kept between calls: a second call on other coverage gives
+    its own shadows, nothing of the first. With a layer that also sees another's ink itself,
+    that ink is added."""
+    from unitopia_widget.layout.losses import CanvasTerms
+    h, w = 37, 21
+    zeros = torch.zeros(3, h * w)
+    rests = torch.tensor([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]])
+    blocks = torch.zeros(3, 3)
+    if sees_ink:
+        blocks[0, 2] = 1.0   # the bottom layer sees the top layer's ink itself
+    terms = CanvasTerms(penalty=zeros, outside=zeros, inside=zeros, blocks=blocks, rests=rests,
+                        sweeps=((0, False),) * 3, shape=(h, w))
+    rng = torch.Generator().manual_seed(7)
+    for _ in range(2):
+        own = torch.rand(3, h * w, generator=rng) * (torch.rand(3, h * w, generator=rng) > 0.7)
+        got = terms.obstacles(own).clone()
+        ref = blocks @ own
+        for a in (1, 2):
+            ink = (rests[a] @ own).clamp(max=1.0).view(h, w)
+            ref[a] += torch.from_numpy(np.minimum(np.cumsum(ink.numpy(), axis=0), 1.0).reshape(-1))
+        np.testing.assert_allclose(got.numpy(), ref.numpy(), rtol=1e-6, atol=1e-6)
+        assert (got[1] > 0).any() and (got[2] == 1.0).any()
+        assert sees_ink or not got[0].any()

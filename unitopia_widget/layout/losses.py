@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import torch
 
-from .strata import RadialShadow, shadow
+from .strata import SCAN_BLOCK, RadialShadow, shadow
 
 
 @dataclass
@@ -61,6 +61,10 @@ class CanvasTerms:
     #: drawn alpha, covered container), in raster px^2
     sums: torch.Tensor | None = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
+    #: ``(O (L, S), inks)``: the obstacle buffer (rows of layers that see no obstacle stay 0),
+    #: and per column-swept group its ink buffer ``(R, H + pad, W)``, padded with zero rows to
+    #: whole scan blocks (``strata.SCAN_BLOCK``) once; see ``obstacles``
+    _obstacle: tuple | None = None
     _tables: torch.Tensor | None = None        # fixed per-pixel tables, see ``tables``
     _onehot: tuple | None = None               # (layer, its one-hot), see ``per_layer``
 
@@ -98,14 +102,34 @@ class CanvasTerms:
 
     def obstacles(self, own: torch.Tensor) -> torch.Tensor:
         """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
-        on, and the shadow of those it rests on (see the module docstring)."""
+        on, and the shadow of those it rests on (see the module docstring). Where no layer
+        sees another's ink itself (a stack), ``O`` is a buffer kept between calls, valid
+        until the next call: each resting layer's row is overwritten, the others stay 0."""
+        if self._obstacle is None or self._obstacle[0].shape != own.shape \
+                or self._obstacle[0].dtype != own.dtype or self._obstacle[0].device != own.device:
+            self._obstacle = (torch.zeros_like(own), {})
         # blocks is all zeros where every layer rests (a stack): skip its product
-        obstacle = self.blocks.to(own) @ own if self.any_blocks else torch.zeros_like(own)
-        for sweep, layers, rows in self.sweep_groups:   # only the layers that rest on others
-            ink = (self.rests.index_select(0, layers).to(own) @ own).clamp_(max=1.0)
-            swept = self.swept(sweep, ink.view(len(rows), *self.shape)).reshape(len(rows), -1)
+        obstacle = self.blocks.to(own) @ own if self.any_blocks else self._obstacle[0]
+        inks = self._obstacle[1]
+        for g, (sweep, layers, rows) in enumerate(self.sweep_groups):   # the resting layers
+            h, w = self.shape
+            if sweep == (0, False) and h % SCAN_BLOCK:
+                # down the columns: the ink is written into zero rows padded to whole scan
+                # blocks, so the scan pads nothing; the swept rows are its first h
+                if g not in inks:
+                    inks[g] = own.new_zeros(len(rows), h + (-h % SCAN_BLOCK), w)
+                ink = inks[g].view(len(rows), -1)[:, :h * w]
+                torch.matmul(self.rests.index_select(0, layers).to(own), own, out=ink)
+                ink.clamp_(max=1.0)
+                swept = shadow(inks[g], *sweep)[:, :h]
+            else:
+                ink = (self.rests.index_select(0, layers).to(own) @ own).clamp_(max=1.0)
+                swept = self.swept(sweep, ink.view(len(rows), h, w))
             for k, a in enumerate(rows):   # a row at a time: index_add_ over rows is slow on a CPU
-                obstacle[a] += swept[k]
+                if self.any_blocks:
+                    obstacle[a] += swept[k].reshape(-1)
+                else:
+                    obstacle[a].copy_(swept[k].reshape(-1))
         return obstacle
 
     def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
