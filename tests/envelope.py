@@ -6,8 +6,11 @@ import numpy as np
 
 def below_envelope(table, lower: str, upper: str) -> float:
     """Share of layer ``upper``'s discs whose centre lies below the upper envelope (the
-    topmost ink, column by column) of layer ``lower``'s discs."""
-    xs = np.arange(0.0, 400.0, 2.0)
+    topmost ink, column by column, every 2 px across both layers' extent) of layer
+    ``lower``'s discs."""
+    both = table[table["layer"].isin([lower, upper])]
+    left, right = (both["x"] - both["width"] / 2).min(), (both["x"] + both["width"] / 2).max()
+    xs = np.arange(2.0 * np.floor(left / 2), right + 2.0, 2.0)
     top = np.full(len(xs), np.inf)
     for x, y, w in table[table["layer"] == lower][["x", "y", "width"]].to_numpy():
         near = np.abs(xs - x) < w / 2
