@@ -253,3 +253,30 @@ def test_a_stacks_obstacles_are_the_shadows_of_the_layers_below_call_after_call(
         np.testing.assert_allclose(got.numpy(), ref.numpy(), rtol=1e-6, atol=1e-6)
         assert (got[1] > 0).any() and (got[2] == 1.0).any()
         assert sees_ink or not got[0].any()
+
+
+def test_independent_scales_that_overfill_one_container_warn_and_name_the_fill():
+    """Three open layers stacked in one box under ``scales="independent"``: each alone covers
+    the default fill (0.5) of it, 150% in all, which warns and names ``fill=``; fills that add
+    up to 75%, or one shared scale, do not warn."""
+    import warnings
+    df = pd.DataFrame({"k": np.repeat([0, 1, 2], 10), "v": np.linspace(1.0, 2.0, 30)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open", iterations=20,
+                     container=uw.Container.rect(20, 20, 360, 260), scales="independent",
+                     forces=[uw.DirectionalForce(90)])
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    with pytest.warns(UserWarning, match=r"layers \['0', '1', '2'\] share one container under "
+                                         r"scales='independent'.*150% of the container.*fill="):
+        chart.layout()
+    for j in range(3):
+        chart.layer(str(j)).set(fill=0.25)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        chart.layout()
+    assert not [w for w in caught if "share one container" in str(w.message)]
+    assert engine.overfilled(chart.layers, "shared") == []
+    for j in range(3):
+        chart.layer(str(j)).set(fill=None)
+    assert engine.overfilled(chart.layers, "shared") == [] \
+        and engine.overfilled(chart.layers, "independent") == [(["0", "1", "2"], 1.5)]

@@ -243,6 +243,14 @@ class Chart(HandControl):
         A run after a change starts from the last layout (``fresh=True``: from scratch)."""
         self.bind_check()
         self._check_pins()
+        for names, total in engine.overfilled(self.layers, self.scales):
+            warnings.warn(f"layers {names} share one container under scales='independent', where "
+                          f"each open layer's marks cover its own fill of it (by default "
+                          f"{engine.DEFAULT_OPEN_FILL:g}): {total:.0%} of the container in all, "
+                          f"more than marks can cover ({engine.MAX_COVER:.0%}), so the layers "
+                          f"packed last shrink to fit; give them fills that add up to at most "
+                          f"{engine.MAX_COVER:g} (layer(name).set(fill=...)) or use "
+                          f"scales='shared'", stacklevel=2)
         origin, inputs = self._start_from(fresh)
         kept = Frames()
 

@@ -40,6 +40,7 @@ from .warm import warm_problem
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
 DEFAULT_OPEN_FILL = 0.5
+MAX_COVER = 0.9           # the most of a container marks can cover (discs pack to about 0.907)
 STILL_ITERATIONS = 20     # the iterations of a layout in which no mark moves and no scale grows
 
 
@@ -233,6 +234,30 @@ def initial_scale(units: Units, layers, canvas, scales: str = "shared", caps=Non
         return scale, np.array([i not in fixed for i in range(len(layers))]), group
     start = min(fixed.values()) if fixed else min(free.values())
     return np.array([min(start, *cap.values())]), np.array([not fixed]), np.zeros(len(layers), int)
+
+
+def overfilled(layers, scales: str) -> list:
+    """Under ``scales="independent"`` an open layer (or one with a ``fill``) sets its own scale
+    so that its marks alone cover its fill of its container: ``[(names, total fill), ...]``
+    for the containers whose layers' fills add up past ``MAX_COVER``, where the layers packed
+    last can only shrink to fit. With one shared scale the layers in a container share its
+    fill, and nothing is listed."""
+    if scales != "independent":
+        return []
+    groups = []   # [(region, [layers])]: regions compare by value
+    for layer in layers:
+        if layer.boundary == "open" or layer.fill is not None:
+            group = next((g for region, g in groups if region == layer.region), None)
+            if group is None:
+                groups.append((layer.region, [layer]))
+            else:
+                group.append(layer)
+    out = []
+    for _, group in groups:
+        total = sum(layer.fill or DEFAULT_OPEN_FILL for layer in group)
+        if len(group) > 1 and total > MAX_COVER:
+            out.append(([layer.name for layer in group], total))
+    return out
 
 
 def scale_cap(units: Units, layers, canvas, i: int) -> float:
