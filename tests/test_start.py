@@ -280,3 +280,23 @@ def test_turnable_strands_start_along_a_wide_container():
     problem, units, center, _ = start_of(chart)
     angle = problem.placement.transforms()[1].detach().numpy()
     assert np.allclose(np.abs(angle), math.pi / 2, atol=0.02)          # upright boxes lie flat
+
+
+@pytest.mark.parametrize("margin", [0.0, 0.2])
+def test_tied_large_marks_whose_own_lattice_leaves_empty_holes_start_scattered(margin):
+    """20 large discs (20x the area) among 120 small ones in a closed ellipse. With a margin of
+    0.2 the holes of the large footprints' own lattice would read as empty (their middle farther
+    than a small radius from the ink): they start scattered, few touching, no nearer the centre
+    than the small ones (from the centre out there were 44 contacts, the large ones in the
+    middle). Without a margin their lattice's holes hold small marks: centre out, as before."""
+    df = pd.DataFrame({"v": np.repeat([1.0, 20.0], [120, 20])})
+    chart = uw.Chart(df, size="v", canvas=(400, 300), boundary="closed", margin=margin,
+                     container=uw.Container.ellipse(200, 150, 180, 130))
+    problem, units, center, radius = start_of(chart)
+    big = units.area > 2 * units.area.min()
+    contacts = (disc_gaps(center[big], radius[big] * (1 + margin)) < 0.5 * radius[~big].mean()).sum() / 2
+    far = np.hypot(center[:, 0] - 200, center[:, 1] - 150)
+    if margin:
+        assert contacts < big.sum() and far[big].mean() > 0.9 * far[~big].mean()
+    else:
+        assert far[big].mean() < 0.8 * far[~big].mean()

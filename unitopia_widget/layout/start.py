@@ -105,7 +105,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                                                         rest[under], radius[under]))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas,
-                                       _later(units, layers, order, i, radius))
+                                       _later(units, layers, order, i, radius), generator)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
         if key in packings and emitter is not None:   # emitted marks take room from packed ones
@@ -239,10 +239,13 @@ def _later(units, layers, order, i, radius) -> float:
     return float(radius[np.isin(units.layer, after)].max()) if after else 0.0
 
 
-def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas, later):
+def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas, later,
+           generator):
     """Starting centres ``(n, 2)`` of a layer without an emitter: thin turnable marks in rows
     along the container, spread sizes packed by size (one packing per container, shared by
-    the layers in it), else lattice spots ranked by the forces. ``later``: see ``_later``."""
+    the layers in it), else lattice spots ranked by the forces. A closed container with no
+    force is packed from its centre out, but the marks ``_apart`` picks start scattered over
+    it (drawn from ``generator``). ``later``: see ``_later``."""
     container = layer.region
     if _lengthwise(layer, units, idx) and key not in packings:
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
@@ -259,7 +262,18 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         fill = layer.boundary == "closed" and layer.fill is None
         # too few to fill it (a shared scale held by a fuller container): spread over it
         sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
-        return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse, later=later)[0]
+        apart = _apart(units, idx, r, scale) if fill and not sparse and not layer.forces else None
+        if apart is None or not apart.any():
+            return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse, later=later)[0]
+        # marks whose lattice among themselves would leave holes that read as empty start at
+        # random spots, largest first, and the others from the centre out between them
+        out, rest = np.zeros((len(idx), 2)), ~apart
+        scatter = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
+        out[apart] = packings[key].place(r[apart], scatter, ranks[apart],
+                                         later=max(float(r[rest].max(initial=0.0)), later))[0]
+        if rest.any():
+            out[rest] = packings[key].place(r[rest], cost, ranks[rest], later=later)[0]
+        return out
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 
@@ -342,6 +356,17 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
     if len(best) < count:
         raise ValueError(f"layer {layer.name!r}: its container is too small for {count} marks")
     return best[ranks]
+
+
+def _apart(units, idx, r, scale) -> np.ndarray:
+    """``(n,)`` bool, the marks ``idx`` (footprint discs ``r (n,)``, canvas px; ``scale (N,)``)
+    that must not pack among themselves: three such footprints touching leave a hole whose
+    middle lies ``2 r / sqrt(3)`` from their centres, farther than a median mark's radius from
+    their ink, room a median mark's footprint does not fit (tied large sizes with a margin:
+    packed from the centre out they form a lattice of their own, with the small marks at
+    the rim). Scattered, the smaller marks settle between them."""
+    ink = np.sqrt(units.area[idx] / math.pi) * scale[idx]
+    return 2 * r / math.sqrt(3) - ink > float(np.median(ink))
 
 
 def spot_cost(layer, container, canvas, points: np.ndarray) -> np.ndarray:
