@@ -61,7 +61,9 @@ class CanvasTerms:
     #: drawn alpha, covered container), in raster px^2
     sums: torch.Tensor | None = None
     _cover: torch.Tensor | None = None         # (L * S,) coverage buffer, all zeros between calls
-    #: ``(O (L, S), inks)``: the obstacle buffer (rows of layers that see no obstacle stay 0),
+    #: ``(like, O (L, S) or None, inks)``: for coverage of ``like`` (shape, dtype, device),
+    #: the obstacle buffer where no layer sees another's ink itself (rows of layers that rest
+    #: on none stay 0; None otherwise),
     #: and per column-swept group its ink buffer ``(R, H + pad, W)``, padded with zero rows to
     #: whole scan blocks (``strata.SCAN_BLOCK``) once; see ``obstacles``
     _obstacle: tuple | None = None
@@ -105,25 +107,26 @@ class CanvasTerms:
         on, and the shadow of those it rests on (see the module docstring). Where no layer
         sees another's ink itself (a stack), ``O`` is a buffer kept between calls, valid
         until the next call: each resting layer's row is overwritten, the others stay 0."""
-        if self._obstacle is None or self._obstacle[0].shape != own.shape \
-                or self._obstacle[0].dtype != own.dtype or self._obstacle[0].device != own.device:
-            self._obstacle = (torch.zeros_like(own), {})
+        like = (own.shape, own.dtype, own.device)
+        if self._obstacle is None or self._obstacle[0] != like:
+            # the zero slab is kept only where it is the obstacle (no blocks product)
+            self._obstacle = (like, None if self.any_blocks else torch.zeros_like(own), {})
         # blocks is all zeros where every layer rests (a stack): skip its product
-        obstacle = self.blocks.to(own) @ own if self.any_blocks else self._obstacle[0]
-        inks = self._obstacle[1]
+        obstacle = self.blocks.to(own) @ own if self.any_blocks else self._obstacle[1]
+        inks = self._obstacle[2]
         for g, (sweep, layers, rows) in enumerate(self.sweep_groups):   # the resting layers
             h, w = self.shape
+            rests = self.rests.index_select(0, layers).to(own)
             if sweep == (0, False) and h % SCAN_BLOCK:
                 # down the columns: the ink is written into zero rows padded to whole scan
                 # blocks, so the scan pads nothing; the swept rows are its first h
                 if g not in inks:
                     inks[g] = own.new_zeros(len(rows), h + (-h % SCAN_BLOCK), w)
                 ink = inks[g].view(len(rows), -1)[:, :h * w]
-                torch.matmul(self.rests.index_select(0, layers).to(own), own, out=ink)
-                ink.clamp_(max=1.0)
+                torch.matmul(rests, own, out=ink).clamp_(max=1.0)
                 swept = shadow(inks[g], *sweep)[:, :h]
             else:
-                ink = (self.rests.index_select(0, layers).to(own) @ own).clamp_(max=1.0)
+                ink = (rests @ own).clamp_(max=1.0)
                 swept = self.swept(sweep, ink.view(len(rows), h, w))
             for k, a in enumerate(rows):   # a row at a time: index_add_ over rows is slow on a CPU
                 if self.any_blocks:

@@ -362,9 +362,9 @@ def _apart(units, idx, r, scale) -> np.ndarray:
     """``(n,)`` bool, the marks ``idx`` (footprint discs ``r (n,)``, canvas px; ``scale (N,)``)
     that must not pack among themselves: three such footprints touching leave a hole whose
     middle lies ``2 r / sqrt(3)`` from their centres, farther than a median mark's radius from
-    their ink, room a median mark's footprint does not fit (tied large sizes with a margin:
-    packed from the centre out they form a lattice of their own, with the small marks at
-    the rim). Scattered, the smaller marks settle between them."""
+    their ink, so it reads as empty (tied large sizes with a margin: packed from the centre
+    out they form a lattice of their own, with the small marks at the rim). Scattered, the
+    smaller marks settle between them."""
     ink = np.sqrt(units.area[idx] / math.pi) * scale[idx]
     return 2 * r / math.sqrt(3) - ink > float(np.median(ink))
 
