@@ -108,6 +108,57 @@ def test_margin_column_gives_each_mark_its_own_gap():
 def test_margin_errors():
     with pytest.raises(ValueError, match=r"margin must be a column name or a fraction in \[0, 4\], got 5"):
         uw.Chart(ones(3), margin=5)
+    with pytest.raises(ValueError, match=r"margin_of must be one of 'median', 'own'; got 'mean'"):
+        uw.Chart(ones(3), margin=0.2, margin_of="mean")
+
+
+def _gaps(table, margins):
+    """``(pairs,)`` centre distance of near circle pairs over the one their ``margins`` need,
+    and whether each pair is two large circles."""
+    xy, r = table[["x", "y"]].to_numpy(), table["width"].to_numpy() / 2
+    pairs = np.array(sorted(cKDTree(xy).query_pairs(4 * r.max())))
+    i, j = pairs[:, 0], pairs[:, 1]
+    need = r[i] * (1 + margins[i]) + r[j] * (1 + margins[j])
+    big = r > 2 * r.min()
+    return np.hypot(*(xy[i] - xy[j]).T) / need, big[i] & big[j]
+
+
+@pytest.mark.parametrize("margin_of", ["median", "own"])
+def test_marks_larger_than_the_median_keep_the_median_marks_gap(margin_of):
+    """30 small circles and 8 of 16x their area (4x their width) pressed into a pile, margin
+    0.5. By default a large circle keeps the gap a median (small) circle keeps, so two large
+    ones stand 0.5 x a small width apart, not 0.5 x their own; "own" keeps version 3's moat."""
+    df = ones(38, v=np.repeat([1.0, 16.0], [30, 8]))
+    table = uw.Chart(df, mark="circle", size="v", margin=0.5, margin_of=margin_of, seed=2,
+                     container=ELLIPSE, boundary="open", fill=0.3,
+                     forces=[uw.PointForce(400, 440)], iterations=250).layout()
+    big = table["width"].to_numpy() > 2 * table["width"].min()
+    capped = np.where(big, 0.5 / 4, 0.5)                  # median width / own width = 1/4
+    ratio, both = _gaps(table, capped)
+    assert ratio.min() > 0.97                              # every gap the rule asks for is kept
+    own, _ = _gaps(table, np.full(len(table), 0.5))
+    close = own[both].min()   # two large circles: their distance over what their own gaps need
+    print(f"margin_of={margin_of}: worst gap {ratio.min():.3f} of the capped rule's, large "
+          f"pairs at {close:.3f} of their own moats")
+    if margin_of == "median":
+        assert close < 0.9                                 # they come closer than their own moats
+    else:
+        assert close > 0.95
+
+
+def test_designs_before_version_4_keep_each_marks_own_margin():
+    chart = uw.Chart(ones(3), margin=0.3)
+    assert chart.layers[0].margin_of == "median"
+    d = json.loads(json.dumps(chart.design()))
+    assert d["version"] == 4 and d["layers"][0]["margin_of"] == "median"
+    d["layers"][0]["margin_of"] = "own"
+    chart.apply_design(d)
+    assert chart.layers[0].margin_of == "own"
+    d["layers"][0].pop("margin_of")
+    chart.apply_design(d)                                  # version 4 without the key: default
+    assert chart.layers[0].margin_of == "median"
+    chart.apply_design({**d, "version": 3})                # laid out on own sizes before version 4
+    assert chart.layers[0].margin_of == "own" and chart.layers[0].encodings["margin"] == 0.3
 
 
 # --- layers and blocks -----------------------------------------------------------------------
@@ -386,4 +437,4 @@ def test_a_version_2_margin_bound_to_a_column_is_named_in_a_warning():
     d["version"] = 2
     with pytest.warns(UserWarning, match=r"margin='gap'.*Double the column"):
         chart.apply_design(d)
-    assert chart.design()["version"] == VERSION == 3
+    assert chart.design()["version"] == VERSION == 4

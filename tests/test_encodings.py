@@ -8,8 +8,8 @@ from PIL import ImageColor
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.design.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, encode,
-                                       palette_for, sequential)
+from unitopia_widget.design.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, capped_margin,
+                                       encode, palette_for, sequential)
 
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -234,6 +234,17 @@ def test_non_positive_missing_or_infinite_values_are_counted(values, bad, missin
     with pytest.raises(ValueError, match=rf"size='Duration': {bad} of 4 rows are missing, infinite "
                                          rf"or not > 0 \({missing} missing\).*dropna=True"):
         uw.Chart(df, size="Duration")
+
+
+def test_margins_of_marks_above_the_median_are_capped_at_the_median_marks_gap():
+    margin = np.array([0.4, 0.4, 0.4, 0.2, 0.4])
+    half_w = np.array([1.0, 1.0, 2.0, 8.0, 0.5])
+    half_h = np.array([1.0, 4.0, 2.0, 2.0, 0.5])          # sizes 1, 2, 2 (median), 4, 0.5
+    got = capped_margin(margin, half_w, half_h)
+    np.testing.assert_allclose(got, [0.4, 0.4, 0.4, 0.1, 0.4])
+    # above the median a mark's gap is its fraction of the median size (2), whatever its own
+    np.testing.assert_allclose(got[3] * 4.0, 0.2 * 2.0)
+    assert capped_margin(margin, half_w, half_h, "own") is margin
 
 
 def test_negative_margin_values_are_refused_but_zero_is_fine():

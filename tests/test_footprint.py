@@ -47,13 +47,13 @@ def test_footprint_is_validated_saved_and_old_designs_keep_ink():
         uw.Chart(df, footprint="holes")
     chart = uw.Chart(df, mark=RING, footprint="ink")
     design = json.loads(json.dumps(chart.design()))
-    assert design["version"] == 3 and design["layers"][0]["footprint"] == "ink"
+    assert design["version"] == 4 and design["layers"][0]["footprint"] == "ink"
     other = uw.Chart(df)
     assert other.layers[0].footprint == "silhouette"
     other.apply_design(design)
     assert other.layers[0].footprint == "ink"
     design["layers"][0].pop("footprint")
-    other.apply_design(design)                                # version 3 without the key: default
+    other.apply_design(design)                                # version 4 without the key: default
     assert other.layers[0].footprint == "silhouette"
     other.apply_design({**design, "version": 2})              # laid out on ink before version 3
     assert other.layers[0].footprint == "ink"

@@ -1,5 +1,5 @@
 """Mark groups (issue 10): several marks in one layer, the shape= channel, joint packing,
-layers sharing a container, design JSON version 3. Layouts are measured from the exported
+layers sharing a container, design JSON version 4. Layouts are measured from the exported
 SVG, every unit rendered alone (tests/ink.py)."""
 from __future__ import annotations
 
@@ -153,14 +153,14 @@ def test_layers_sharing_one_container_collide_both_ways():
     assert not problem.terms.blocks.any()                              # different containers: independent
 
 
-def test_design_json_round_trip_version_3():
+def test_design_json_round_trip_version_4():
     df = pd.DataFrame({"kind": ["x", "y", "z", 3] * 2, "v": np.arange(1.0, 9.0)})
     chart = uw.Chart(df, mark={"x": "fa:lemon", "y": str(DATA / "class_styled.svg"), "z": "star", 3: "drop"},
                      shape="kind", size="v")
     design = json.loads(json.dumps(chart.design()))
-    assert design["version"] == 3
+    assert design["version"] == 4
     layer = design["layers"][0]
-    assert layer["footprint"] == "silhouette"
+    assert layer["footprint"] == "silhouette" and layer["margin_of"] == "median"
     assert layer["mark_keys"] == ["x", "y", "z", 3] and layer["encodings"]["shape"] == "kind"
     assert layer["marks"][0] == {"kind": "icon", "name": "fa:lemon"} and "mark" not in layer
     other = uw.Chart(df)
@@ -181,8 +181,9 @@ def test_version_1_designs_still_load():
     chart.apply_design(v1)
     assert chart.layers[0].marks == [uw.Mark.shape("heart")] and chart.layers[0].encodings["shape"] is None
     saved = chart.design()
-    assert saved["version"] == 3 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
+    assert saved["version"] == 4 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
     assert saved["layers"][0]["footprint"] == "ink"      # as version 1 and 2 laid it out
+    assert saved["layers"][0]["margin_of"] == "own"      # as versions 1 to 3 laid it out
     edited = chart.design()   # an editor that knows only version 1 sets "mark": it wins
     edited["layers"][0]["mark"] = {"kind": "shape", "name": "star"}
     chart.apply_design(edited)

@@ -27,6 +27,7 @@ import unitopia_widget as uw
 from unitopia_widget import chart as chart_module
 from unitopia_widget.chart import MAX_LAYERS, MAX_UNITS
 from unitopia_widget.design.files import load_design
+from unitopia_widget.design.scene import VERSION
 from unitopia_widget.io.images import image_data_url
 
 DATA = Path(__file__).parent / "data" / "marks"
@@ -574,7 +575,7 @@ def corrupt_files(good: str) -> dict:
         "list": ("[1, 2, 3]", r"not a unitopia design"),
         "other-schema": ('{"schema": "vega", "version": 1}', r"not a unitopia design"),
         "newer": (json.dumps(newer), r"version 99 is newer than this unitopia-widget reads "
-                                     r"\(up to 3\); upgrade"),
+                                     rf"\(up to {VERSION}\); upgrade"),
         "bad-field": (json.dumps(bad_layer), r"boundary must be one of 'closed', 'open'; got 'leaky'"),
         "no-mark": (json.dumps(no_mark), r"design layer .*missing 'marks'"),
         "deep": ("[" * 100_000 + "]" * 100_000, r"is not valid JSON|not a unitopia design"),

@@ -288,10 +288,11 @@ def test_tied_large_marks_whose_own_lattice_leaves_empty_holes_start_scattered(m
     0.2 the holes of the large footprints' own lattice would read as empty (their middle farther
     than a small radius from the ink): they start scattered, few touching, no nearer the centre
     than the small ones (from the centre out there were 44 contacts, the large ones in the
-    middle). Without a margin their lattice's holes hold small marks: centre out, as before."""
+    middle). Without a margin their lattice's holes hold small marks: centre out, as before.
+    (Each mark keeps its own margin: capped at the median's, the large ones' holes are smaller.)"""
     df = pd.DataFrame({"v": np.repeat([1.0, 20.0], [120, 20])})
     chart = uw.Chart(df, size="v", canvas=(400, 300), boundary="closed", margin=margin,
-                     container=uw.Container.ellipse(200, 150, 180, 130))
+                     margin_of="own", container=uw.Container.ellipse(200, 150, 180, 130))
     problem, units, center, radius = start_of(chart)
     big = units.area > 2 * units.area.min()
     contacts = (disc_gaps(center[big], radius[big] * (1 + margin)) < 0.5 * radius[~big].mean()).sum() / 2

@@ -7,7 +7,7 @@ export const CHANNELS = ["size", "width", "height", "color", "shape", "margin", 
 export const clone = (value) => (value == null ? value : JSON.parse(JSON.stringify(value)));
 
 export function emptyDesign() {
-  return { schema: "unitopia-design", version: 3, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 4, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 
 export function newLayer(name, mark = { kind: "shape", name: "circle" }) {
@@ -27,6 +27,7 @@ export function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     blocks: [],
     iterations: 600,
     footprint: "silhouette",
+    margin_of: "median",
     x_scale: "linear",
     y_scale: "linear",
     arrange: "free",

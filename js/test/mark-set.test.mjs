@@ -38,10 +38,11 @@ test("mark_keys move and go with their marks; adding a mark drops them", () => {
   assert.equal(JSON.stringify(d), before, "edits never mutate their input");
 });
 
-test("new layers are version 3 with a shape channel, a silhouette footprint and copy the last layer's marks", () => {
+test("new layers are version 4 with a shape channel, a silhouette footprint, median-capped margins and copy the last layer's marks", () => {
   const d = addMark(edit.addLayer(edit.emptyDesign()), 0, star);
-  assert.equal(d.version, 3);
+  assert.equal(d.version, 4);
   assert.equal(d.layers[0].footprint, "silhouette");
+  assert.equal(d.layers[0].margin_of, "median");
   assert.equal(d.layers[0].encodings.shape, null);
   assert.deepEqual(edit.addLayer(d).layers[1].marks, [circle, star]);
   assert.ok(edit.CHANNELS.includes("shape"));

@@ -27,6 +27,7 @@ MISSING_COLOR = "#bab0ac"  # grey, drawn last in the legend
 SEQUENTIAL = ("#f7e98e", "#9fd27f", "#3fae8a", "#24868e", "#355f8d", "#46327e")  # light -> dark
 DEFAULT_COLOR = "#4e79a7"
 NUMERIC_CHANNELS = ("size", "width", "height", "margin")
+MARGINS_OF = ("median", "own")   # what a margin is a fraction of: see capped_margin
 
 
 @dataclass
@@ -46,6 +47,23 @@ def footprint(margin):
     margin ``m`` stand ``m`` times their size apart, each keeping half that gap on every side
     (so the container's edge keeps half of it too)."""
     return 1.0 + margin
+
+
+def capped_margin(margin: np.ndarray, half_w: np.ndarray, half_h: np.ndarray,
+                  of: str = "median") -> np.ndarray:
+    """``(n,)`` the margin fraction each of one layer's marks keeps, for ``footprint``.
+
+    ``of="own"``: ``margin`` as given, a fraction of each mark's own size however large.
+    ``of="median"``: a fraction of the mark's size up to the layer's median mark's, so a
+    mark larger than the median keeps the gap the median mark keeps (its fraction falls as
+    median size / its size); tied and small marks keep theirs. Without the cap, a few large
+    marks' own gaps are wider than a typical mark and read as empty room no mark may enter.
+    ``half_w``, ``half_h``: ``(n,)`` box half sides at scale 1; a mark's size is their
+    geometric mean."""
+    if of == "own" or len(margin) == 0:
+        return margin
+    size = np.sqrt(half_w * half_h)
+    return margin * np.minimum(1.0, np.median(size) / size)
 
 
 def is_css_color(value) -> bool:

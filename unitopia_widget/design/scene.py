@@ -13,12 +13,13 @@ import numpy as np
 
 from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
+from .encodings import MARGINS_OF
 from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark, check_footprint
 from .positions import check_arrange, check_scale
 from .validate import check_choice, check_finite, closest, short
 
-SCHEMA, VERSION = "unitopia-design", 3
+SCHEMA, VERSION = "unitopia-design", 4
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order", "x", "y")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
@@ -27,8 +28,8 @@ MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 RANGES = ("size_range", "width_range", "height_range")   # (min_px, max_px) of a linear scale
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
-                "rotate", "blocks", "iterations", "footprint", "name", "x_scale", "y_scale",
-                "arrange") + CHANNELS + RANGES
+                "rotate", "blocks", "iterations", "footprint", "margin_of", "name", "x_scale",
+                "y_scale", "arrange") + CHANNELS + RANGES
 
 
 class Layer:
@@ -47,6 +48,11 @@ class Layer:
     with enclosed holes filled, so a ring keeps other marks out of its middle;
     ``"ink"`` its ink alone, for marks meant to nest. The export draws the ink.
 
+    ``margin_of``: what the ``margin`` fraction is of; ``"median"`` (default) each mark's
+    size up to its layer's median mark's, so marks larger than the median keep the median
+    mark's gap (tied and small marks their own); ``"own"`` each mark's own size however
+    large, so a large mark keeps a wide moat (version 3's rule).
+
     ``size_range``, ``width_range``, ``height_range``: None (data-true: area or extent
     proportional to the value) or ``(min_px, max_px)``: the bound column's values map
     linearly onto mark extents from ``min_px`` to ``max_px`` (not area-true); the global
@@ -55,7 +61,8 @@ class Layer:
 
     def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
                  forces=(), boundary="closed", fill=None, orientation=None, rotate=False,
-                 blocks=(), iterations=600, footprint="silhouette", on_change=None, **encodings):
+                 blocks=(), iterations=600, footprint="silhouette", margin_of="median",
+                 on_change=None, **encodings):
         self._on_change = None
         self.name, self.rows = layer_name(name), _rows(rows)
         self.marks, self.mark_keys = _mark_set("circle" if mark is None else mark)
@@ -65,12 +72,13 @@ class Layer:
         self.forces, self.blocks = [], []
         self.boundary, self.fill, self.orientation = "closed", None, None
         self.rotate, self.iterations, self.footprint = False, 600, "silhouette"
+        self.margin_of = "median"
         self.size_range = self.width_range = self.height_range = None
         self.x_scale = self.y_scale = "linear"   # position channels: see design/positions.py
         self.arrange = "free"
         self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
                  fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
-                 iterations=iterations, footprint=footprint, **encodings)
+                 iterations=iterations, footprint=footprint, margin_of=margin_of, **encodings)
         self._on_change = on_change
 
     def set(self, **fields) -> "Layer":
@@ -122,7 +130,8 @@ class Layer:
             "forces": [f.to_json() for f in self.forces],
             "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
             "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
-            "footprint": self.footprint, "x_scale": self.x_scale, "y_scale": self.y_scale,
+            "footprint": self.footprint, "margin_of": self.margin_of,
+            "x_scale": self.x_scale, "y_scale": self.y_scale,
             "arrange": self.arrange,
             **{k: list(getattr(self, k)) for k in RANGES if getattr(self, k) is not None},
         }
@@ -151,7 +160,8 @@ class Layer:
                    boundary=d.get("boundary", "closed"), fill=d.get("fill"),
                    orientation=d.get("orientation"), rotate=d.get("rotate", False),
                    blocks=d.get("blocks", []), iterations=d.get("iterations", 600),
-                   footprint=d.get("footprint", "silhouette"), on_change=on_change,
+                   footprint=d.get("footprint", "silhouette"),
+                   margin_of=d.get("margin_of", "median"), on_change=on_change,
                    **{k: d[k] for k in RANGES if d.get(k) is not None},
                    **{k: d[k] for k in ("x_scale", "y_scale", "arrange") if k in d}, **enc)
 
@@ -348,6 +358,7 @@ _CHECKS = {
     "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
     "iterations": _iterations, "name": lambda v: layer_name(v),
     "footprint": lambda v: check_footprint("footprint", v),
+    "margin_of": lambda v: check_choice("Layer", "margin_of", v, MARGINS_OF),
     "x_scale": lambda v: check_scale("x", v), "y_scale": lambda v: check_scale("y", v),
     "arrange": check_arrange,
     **{c: _channel(c) for c in CHANNELS},

@@ -46,7 +46,16 @@ def _v2_to_v3(d: dict) -> dict:
     return _footprint_v2_to_v3(_margin_v2_to_v3(d))
 
 
-_STEPS = {2: _v2_to_v3}   # version v -> the step to v + 1 (version 1 reads as 2)
+def _v3_to_v4(d: dict) -> dict:
+    """Version 4: a margin is a fraction of a mark's size up to its layer's median mark's
+    (``margin_of="median"``); before, of each mark's own size however large. Older layers
+    get ``margin_of="own"``, which lays them out exactly as before."""
+    d["layers"] = [{"margin_of": "own", **x} if isinstance(x, dict) else x
+                   for x in d.get("layers") or []]
+    return d
+
+
+_STEPS = {2: _v2_to_v3, 3: _v3_to_v4}   # version v -> the step to v + 1 (version 1 reads as 2)
 
 
 def upgrade(d: dict) -> dict:

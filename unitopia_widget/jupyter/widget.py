@@ -51,7 +51,9 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
     the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
-    ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column), ``order`` (emission
+    ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column),
+    ``margin_of`` ("median", the default: a mark larger than its layer's median mark keeps
+    the median mark's gap; "own": each mark's own size however large), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
     covered; open default 0.5), ``orientation``, ``rotate``, ``footprint`` ("silhouette":

@@ -21,9 +21,9 @@ import torch
 
 from . import arrange, positions
 from .atlas import SpriteAtlas
-from ..design.encodings import (Encoded, check_column, continuous_values, encode, footprint,
-                                linear_extent, is_continuous, missing_warning, palette_for,
-                                unhashable, MIN_DRAWN)
+from ..design.encodings import (Encoded, capped_margin, check_column, continuous_values, encode,
+                                footprint, linear_extent, is_continuous, missing_warning,
+                                palette_for, unhashable, MIN_DRAWN)
 from ..design.groups import mark_choice
 from .heap import held
 from .losses import CanvasTerms
@@ -142,7 +142,9 @@ def bind(df: pd.DataFrame, layers) -> Units:
         fill = np.array([m.fill_fraction for m in feet])[choice]
         # the box whose silhouette has area enc.area: h0 * (aspect * h0) * fill_fraction = area
         h0 = np.sqrt(enc.area / (aspect * fill))
-        parts.append((i, h0 * aspect * enc.width / 2, h0 * enc.height / 2, enc, choice, sprite))
+        half_w, half_h = h0 * aspect * enc.width / 2, h0 * enc.height / 2
+        enc.margin = capped_margin(enc.margin, half_w, half_h, layer.margin_of)
+        parts.append((i, half_w, half_h, enc, choice, sprite))
         rows.extend(sub.index.tolist())
     cat = lambda f: np.concatenate([f(p) for p in parts])  # noqa: E731
     return Units(rows=rows, layer=cat(lambda p: np.full(len(p[3].area), p[0])),

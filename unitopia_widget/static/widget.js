@@ -84,7 +84,7 @@ var fmt = (v) => String(Math.round(v * 1e3) / 1e3);
 var CHANNELS = ["size", "width", "height", "color", "shape", "margin", "order", "x", "y"];
 var clone = (value) => value == null ? value : JSON.parse(JSON.stringify(value));
 function emptyDesign() {
-  return { schema: "unitopia-design", version: 3, canvas: [800, 500], background: null, seed: 0, layers: [] };
+  return { schema: "unitopia-design", version: 4, canvas: [800, 500], background: null, seed: 0, layers: [] };
 }
 function newLayer(name, mark = { kind: "shape", name: "circle" }) {
   return {
@@ -103,6 +103,7 @@ function newLayer(name, mark = { kind: "shape", name: "circle" }) {
     blocks: [],
     iterations: 600,
     footprint: "silhouette",
+    margin_of: "median",
     x_scale: "linear",
     y_scale: "linear",
     arrange: "free"
