@@ -3,7 +3,7 @@
 Hand-drawn-looking containers (narrow parts, holes, two piles), icons styled
 by ``<style>`` classes with strokes and groups (``benchmarks/data``),
 heavy-tailed data (lognormal, 100x-700x spreads; a Pareto column, 760,000x),
-margins (a page of drops turned to its centre), seven kinds of snowflakes around
+margins (a page of drops turned to its centre; tied sizes at 0.2 and 0.4), seven kinds of snowflakes around
 lettering, tall thin marks (data-true and on a ``height_range``), blocked layers and emitters (a stack whose layers
 shrink 4x; nine layers three to a bowl; snowflakes stacked in a vase), turning rectangles, line-drawn
 sketches, hollow rings and a container PNG with faint alpha pixels (assets
@@ -374,12 +374,23 @@ def design_lettering():
 
 def design_ties_margin():
     """400 upright raindrops of three tied sizes (1, 5 and 20; 205, 148 and 47 rows) with a
-    margin of 0.2 in the necked container: the median mark is the smallest, so the wide
-    margin bands of the largest border room a checker counts as empty."""
+    margin of 0.2 in the necked container: the median mark is the smallest, so the margin
+    bands of the largest (their own size's, before design version 4) border room a checker
+    counts as empty."""
     df = pd.DataFrame({"v": np.repeat([1.0, 5.0, 20.0], [205, 148, 47])})
     c = neck_container()
     return dict(df=df, mark=icon("raindrop"), size="v", margin=0.2, container=c,
                 boundary="closed"), [c]
+
+
+def design_ties_wide():
+    """The same tied drops (seeded counts) turned to the centre of a wobbly blob, margin 0.4:
+    with each mark's own margin the large drops' moats read as 19-21% empty."""
+    counts = np.random.default_rng(3).multinomial(400, [0.51, 0.37, 0.12])
+    df = pd.DataFrame({"v": np.repeat([1.0, 5.0, 20.0], counts)})
+    c = uw.Container.polygon(blob(400, 300, 340, 250, 0.06, 11))
+    return dict(df=df, mark=icon("raindrop"), size="v", margin=0.4, orientation="to_center",
+                container=c, boundary="closed"), [c]
 
 
 DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": design_bags,
@@ -391,6 +402,7 @@ DESIGNS = {"bubbles": design_bubbles, "snowflakes": design_snowflakes, "bags": d
            "strata": design_strata, "strata-alike": design_strata_alike, "rings-strata": design_rings_strata, "pareto": design_pareto, "beeswarm": design_beeswarm,
            "waffle": design_waffle, "bowls": design_bowls, "page": design_page,
            "lettering": design_lettering, "ties-margin": design_ties_margin,
+           "ties-wide": design_ties_wide,
            "flake-stack": design_flake_stack}
 
 
