@@ -49,7 +49,8 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     dev = center.device
     hw = p.half_w * footprint(p.margin) * unit_scale
     hh = p.half_h * footprint(p.margin) * unit_scale
-    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev).plan_for(hw, hh)
+    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev,
+                   p.sprite_aspects).plan_for(hw, hh)
     as_t = lambda a: torch.as_tensor(a, device=dev, dtype=torch.float32)   # noqa: E731
     values, index, owner = render_samples(center, angle, as_t(hw), as_t(hh), plan, p.pyramids, grid)
     drawn = values > 0.5

@@ -372,9 +372,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
         emitted = layers[i].emitter is not None
         depth[i] = max([depth[names.index(b)] + 1 for b in layers[i].blocks], default=0) if emitted else 0
     sides = [SPRITE_SIDE] * len(pyramids)
+    aspects = [float(lv[0].shape[-1] / lv[0].shape[-2]) for lv in pyramids]
     if len(pyramids) > 1:   # one texture for all marks: the cost does not grow with their number
         pyramids = SpriteAtlas(pyramids)
-    return Problem(grid=grid, pyramids=pyramids, sprite_sides=sides,
+    return Problem(grid=grid, pyramids=pyramids, sprite_sides=sides, sprite_aspects=aspects,
                    sprite=units.sprite, layer=units.layer, half_w=units.half_w,
                    half_h=units.half_h, margin=units.margin, placement=placement, terms=terms,
                    forces=[layer.forces for layer in layers], scale=scale,

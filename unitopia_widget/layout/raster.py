@@ -145,33 +145,46 @@ def snap_rho(rho: float, half_w: np.ndarray, half_h: np.ndarray, rotating: bool,
 
 
 def group_keys(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
-               sprite_sides: list[int], rotating: np.ndarray, rho: float) -> np.ndarray:
+               sprite_sides: list[int], rotating: np.ndarray, rho: float,
+               sprite_aspects=None) -> np.ndarray:
     """``(N, 4)`` int: each mark's (sprite, level, patch_h, patch_w); see ``plan_groups``."""
-    long_px = 2.0 * np.maximum(half_w, half_h) * rho
     radius = np.hypot(half_w, half_h) * rho
     ext_w = np.where(rotating, 2 * radius, 2 * half_w * rho) + 2.0
     ext_h = np.where(rotating, 2 * radius, 2 * half_h * rho) + 2.0
     stride = _stride(ext_w, ext_h)
     pw, ph = _patch_side(ext_w, stride), _patch_side(ext_h, stride)
     sides = np.asarray(sprite_sides, dtype=float)[sprite_ids]
-    # level l has long side sides / 2**l; pick the coarsest level that keeps a texel <= a pixel
-    level = np.floor(np.log2(np.maximum(sides / np.maximum(long_px, 1.0), 1.0))).astype(int)
+    # level l has sides / 2**l: texels per raster px at level 0, along the long side, or along
+    # the axis that packs the most (a mark drawn stretched, by a width or height encoding,
+    # packs more texels along its short side)
+    if sprite_aspects is None:
+        per_px = sides / np.maximum(2.0 * np.maximum(half_w, half_h) * rho, 1.0)
+    else:
+        aspect = np.asarray(sprite_aspects, dtype=float)[sprite_ids]
+        per_px = np.maximum(sides * np.minimum(aspect, 1.0) / np.maximum(2 * half_w * rho, 1.0),
+                            sides / np.maximum(aspect, 1.0) / np.maximum(2 * half_h * rho, 1.0))
+    # the coarsest level that keeps a texel <= a pixel along the axis drawn at most texels per
+    # pixel: finer, a point sample per pixel would skip the ink of a line thinner than a pixel
+    level = np.floor(np.log2(np.maximum(per_px, 1.0))).astype(int)
     level = np.minimum(level, int(np.log2(max(sprite_sides) / 4)))   # the coarsest level is 4 texels
     return np.stack([sprite_ids, level, ph, pw], axis=1)
 
 
 def plan_groups(half_w: np.ndarray, half_h: np.ndarray, sprite_ids: np.ndarray,
-                sprite_sides: list[int], rotating: np.ndarray, rho: float, keys=None):
+                sprite_sides: list[int], rotating: np.ndarray, rho: float, keys=None,
+                sprite_aspects=None):
     """Group marks by (sprite, level, patch shape).
 
     ``half_w``, ``half_h``: ``(N,)`` half extents of each footprint, canvas px.
     ``sprite_ids``: ``(N,)`` index into the sprite pyramids.
-    ``sprite_sides``: long side of each sprite's finest level, texels.
+    ``sprite_sides``: long side of each sprite's finest level, texels; ``sprite_aspects``:
+    its width / height (None: the long side picks the level, as for a mark drawn unstretched).
     ``rotating``: ``(N,)`` bool; rotating marks get a square patch that holds
     any rotation, others a box patch. ``keys``: ``group_keys`` already computed.
     Returns a list of ``(indices, sprite_id, level, patch_h, patch_w)``.
     """
-    key = group_keys(half_w, half_h, sprite_ids, sprite_sides, rotating, rho) if keys is None else keys
+    key = group_keys(half_w, half_h, sprite_ids, sprite_sides, rotating, rho, sprite_aspects) \
+        if keys is None else keys
     # one integer per key (each column is small and non-negative): a 1-D unique is cheap
     code = ((key[:, 0].astype(np.int64) * 64 + key[:, 1]) * 2 ** 20 + key[:, 2]) * 2 ** 20 + key[:, 3]
     uniq, first, inverse = np.unique(code, return_index=True, return_inverse=True)
@@ -226,15 +239,17 @@ class _Part:
 class Planner:
     """Builds a ``RenderPlan`` when the marks' groups change, and reuses it otherwise."""
 
-    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, grid: RasterGrid, device):
+    def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, grid: RasterGrid, device,
+                 sprite_aspects=None):
         self.args = (sprite_ids, sprite_sides, rotating)
+        self.aspects = sprite_aspects
         self.pyramids, self.grid, self.device = pyramids, grid, device
         self.keys, self.current = None, None
 
     def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
         """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
         sprite_ids, sides, rotating = self.args
-        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho)
+        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, self.aspects)
         if self.keys is None or not np.array_equal(keys, self.keys):
             groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, keys)
             self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device, self.grid)

@@ -55,6 +55,7 @@ class Problem:
     group_free: np.ndarray | None = None   # (G,) bool, controlled groups; None: [free_scale]
     reach: np.ndarray | None = None        # (N,) ink radius less margin band at scale 1 (room)
     disc: np.ndarray | None = None         # (N,) the disc a packed footprint needs at scale 1 (start.footprint_radius)
+    sprite_aspects: list | None = None     # width / height of each sprite's finest level (None: 1)
     stage: np.ndarray | None = None  # (N,) pouring stage: stage k moves once stage k - 1 rests
     stage_wait: int = 150          # iterations a stage waits at most for the one before
     travelling: bool = True        # whether marks start away from where they will rest
@@ -129,7 +130,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         params.append({"params": place.angle_params(), "lr": 0.05})
     optimizer = Adam(params, betas=(0.8, 0.95))
     rotating = place.rotating()
-    planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev)
+    planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev,
+                      p.sprite_aspects)
     n_layers = p.terms.penalty.shape[0]
     readback, plan, sample_layer = Readback(dev), None, None
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
