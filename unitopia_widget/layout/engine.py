@@ -27,6 +27,7 @@ from ..design.encodings import (Encoded, capped_margin, check_column, continuous
 from ..design.groups import mark_choice
 from .heap import held
 from .losses import CanvasTerms
+from .pack import thin
 from .placement import Placement
 from .raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..design.scene import block_order
@@ -38,6 +39,7 @@ from .pins import pin_problem, pinned_units
 from .warm import warm_problem
 
 TARGET_RADIUS = 10.0      # raster px: the mean footprint radius the raster resolution aims at
+THIN_ACROSS = 1.5         # raster px: the least the median thin mark measures across
 MAX_RASTER = 6_000_000    # raster px over all layer slabs together
 DEFAULT_OPEN_FILL = 0.5
 MAX_COVER = 0.9           # the most of a container marks can cover (discs pack to about 0.907)
@@ -304,7 +306,15 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     seen = 2 * np.minimum(units.half_w, units.half_h) * unit_scale >= MIN_DRAWN
     r_mean = float(np.mean(foot[seen] if seen.any() else foot))
     w, h = canvas
-    rho = min(max(TARGET_RADIUS / r_mean, 0.25), 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
+    rho = max(TARGET_RADIUS / r_mean, 0.25)
+    # thin marks collide across their short side: two strands side by side in pixels wider
+    # than they are share a pixel, whose summed alpha stays under 1, and their overlap is lost
+    long_side = 2 * np.maximum(units.half_w, units.half_h) * unit_scale
+    slim = thin(units.half_w, units.half_h) & (long_side >= MIN_DRAWN)
+    if slim.any():
+        across = 2 * np.minimum(units.half_w, units.half_h)[slim] * unit_scale[slim]
+        rho = max(rho, THIN_ACROSS / float(np.median(across)))
+    rho = min(rho, 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
     half = np.stack([units.half_w, units.half_h]) * band * unit_scale
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
