@@ -30,7 +30,8 @@ from .design.validate import closest
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint",
-             "margin_of", "canvas", "background", "seed", "device", "iterations", "dropna", "scales", "title", "caption",
+             "margin_of", "canvas", "background", "seed", "device", "iterations", "dropna",
+             "scales", "title", "caption",
              "legend", "tooltip", "size_range", "width_range", "height_range", "x", "y",
              "x_scale", "y_scale", "arrange")
 MAX_UNITS = 20_000

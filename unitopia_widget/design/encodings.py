@@ -60,7 +60,7 @@ def capped_margin(margin: np.ndarray, half_w: np.ndarray, half_h: np.ndarray,
     marks' own gaps are wider than a typical mark and read as empty room no mark may enter.
     ``half_w``, ``half_h``: ``(n,)`` box half sides at scale 1; a mark's size is their
     geometric mean."""
-    if of == "own" or len(margin) == 0:
+    if of == "own":
         return margin
     size = np.sqrt(half_w * half_h)
     return margin * np.minimum(1.0, np.median(size) / size)

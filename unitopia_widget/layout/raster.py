@@ -241,15 +241,14 @@ class Planner:
 
     def __init__(self, sprite_ids, sprite_sides, rotating, pyramids, grid: RasterGrid, device,
                  sprite_aspects=None):
-        self.args = (sprite_ids, sprite_sides, rotating)
-        self.aspects = sprite_aspects
+        self.args = (sprite_ids, sprite_sides, rotating, sprite_aspects)
         self.pyramids, self.grid, self.device = pyramids, grid, device
         self.keys, self.current = None, None
 
     def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
         """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
-        sprite_ids, sides, rotating = self.args
-        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, self.aspects)
+        sprite_ids, sides, rotating, aspects = self.args
+        keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, aspects)
         if self.keys is None or not np.array_equal(keys, self.keys):
             groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, keys)
             self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device, self.grid)
