@@ -4,7 +4,7 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.layout.lattice import Region
+from unitopia_widget.layout.prepare.lattice import Region
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 CANVAS = (600, 400)

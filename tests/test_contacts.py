@@ -1,4 +1,4 @@
-"""Contacts finer than the layout's raster (layout/contacts.py): hollow marks' layouts are
+"""Contacts finer than the layout's raster (layout/rules/contacts.py): hollow marks' layouts are
 drawn once more at 2 px per canvas px after the solve, and units that touch there move
 apart by at most one layout raster pixel."""
 from __future__ import annotations
@@ -10,7 +10,8 @@ import torch
 import unitopia_widget as uw
 from ink import ink_metrics
 from test_footprint import ELLIPSE, SUN, SVG_RING
-from unitopia_widget.layout import contacts, engine
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.rules import contacts
 
 
 def test_two_rings_touching_less_than_a_raster_pixel_deep_move_apart():

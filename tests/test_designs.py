@@ -10,10 +10,10 @@ import torch
 import unitopia_widget as uw
 from ink import unit_inks
 from unitopia_widget.design.encodings import footprint
-from unitopia_widget.layout.placement import Placement
-from unitopia_widget.layout.raster import RasterGrid
-from unitopia_widget.layout.relocate import hole_need, holes
-from unitopia_widget.layout.room import empty_share
+from unitopia_widget.layout.step.placement import Placement
+from unitopia_widget.layout.step.raster import RasterGrid
+from unitopia_widget.layout.rules.relocate import hole_need, holes
+from unitopia_widget.layout.step.room import empty_share
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

@@ -14,8 +14,8 @@ import torch
 
 import unitopia_widget as uw
 from ink import ink_metrics
-from unitopia_widget.layout.atlas import SpriteAtlas
-from unitopia_widget.layout.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
+from unitopia_widget.layout.step.atlas import SpriteAtlas
+from unitopia_widget.layout.step.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
                                     sprite_pyramid)
 
 pytestmark = pytest.mark.usefixtures("one_thread")

@@ -11,7 +11,8 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.layout import engine, heap
+from unitopia_widget.layout import engine
+from unitopia_widget.layout.step import heap
 
 pytestmark = pytest.mark.skipif(heap._LIBC is None, reason="the heap is tuned on glibc only")
 

@@ -1,10 +1,10 @@
-"""Tests for unitopia_widget.layout.losses: CanvasLoss values on hand-built rasters and its backward."""
+"""Tests for unitopia_widget.layout.step.losses: CanvasLoss values on hand-built rasters and its backward."""
 import math
 
 import pytest
 import torch
 
-from unitopia_widget.layout.losses import CanvasLoss, CanvasTerms
+from unitopia_widget.layout.step.losses import CanvasLoss, CanvasTerms
 
 D = torch.float64
 

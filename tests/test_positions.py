@@ -9,7 +9,7 @@ from scipy.stats import spearmanr
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.lattice import Region
+from unitopia_widget.layout.prepare.lattice import Region
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 CANVAS = (800, 500)
@@ -167,7 +167,7 @@ def test_a_datetime_column_is_a_linear_position_with_date_ticks():
 
 def test_an_axis_without_room_on_its_side_goes_to_the_far_side():
     from unitopia_widget.design.positions import Scale
-    from unitopia_widget.layout.positions import Axis
+    from unitopia_widget.layout.prepare.positions import Axis
     from unitopia_widget.output.axes import axes_svg
     bands = Scale("k", "band", ("a", "b"))
     left = axes_svg([Axis("l", "y", bands, 50, 450, cross=100, far=500)], CANVAS)

@@ -1,4 +1,4 @@
-"""Tests for unitopia_widget.layout.raster: sprite pyramids, patch groups, the patch renderer."""
+"""Tests for unitopia_widget.layout.step.raster: sprite pyramids, patch groups, the patch renderer."""
 import math
 
 import numpy as np
@@ -8,7 +8,7 @@ import torch
 
 import unitopia_widget as uw
 from unitopia_widget.design.marks import Mark
-from unitopia_widget.layout.raster import (PATCH_SIDES, SPRITE_SIDE, RasterGrid, accumulate,
+from unitopia_widget.layout.step.raster import (PATCH_SIDES, SPRITE_SIDE, RasterGrid, accumulate,
                                     plan_groups, render_samples, sprite_pyramid)
 
 
@@ -318,7 +318,7 @@ def _sun(width):
 
 
 def test_line_drawings_are_thin_and_filled_shapes_are_not():
-    from unitopia_widget.layout.raster import is_thin
+    from unitopia_widget.layout.step.raster import is_thin
     assert is_thin(_sun(3).silhouette(256))
     for name in ("circle", "star", "heart", "triangle", "drop", "square"):
         assert not is_thin(uw.Mark.shape(name).silhouette(256)), name

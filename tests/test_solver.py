@@ -10,9 +10,11 @@ from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.scales import Scales
-from unitopia_widget.layout.schedule import BestLoss, Rest, StartPolish
-from unitopia_widget.layout.solver import Problem, Result, solve
+from unitopia_widget.layout.step.scales import Scales
+from unitopia_widget.layout.rules.schedule import BestLoss, Rest, StartPolish
+from unitopia_widget.layout.prepare import assemble
+from unitopia_widget.layout.prepare.problem import Problem
+from unitopia_widget.layout.solver import Result, solve
 
 CX, CY, R = 400.0, 250.0, 200.0
 CIRCLE = uw.Container.ellipse(CX, CY, R, R)
@@ -159,8 +161,8 @@ def test_frames_are_float32_n_by_4_and_end_on_the_result():
 def test_the_start_frame_is_sent_before_the_region_fields_are_made(monkeypatch):
     # a large layout's fields take a while: the live view shows the start meanwhile
     frames, seen = [], []
-    fields = engine._fields
-    monkeypatch.setattr(engine, "_fields", lambda *a: (seen.append(len(frames)), fields(*a))[1])
+    fields = assemble._fields
+    monkeypatch.setattr(assemble, "_fields", lambda *a: (seen.append(len(frames)), fields(*a))[1])
     c = chart(25, iterations=21)
     c.layout(on_frame=lambda f: frames.append(np.array(f, copy=True)), frame_every=3)
     assert seen == [1]

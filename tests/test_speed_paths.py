@@ -14,10 +14,10 @@ import torch
 
 import unitopia_widget as uw
 from unitopia_widget.layout import solver
-from unitopia_widget.layout.lattice import Region, fitting_lattice
-from unitopia_widget.layout.optim import Adam
-from unitopia_widget.layout.raster import PATCH_SIDES, SPRITE_SIDE, Planner, RasterGrid, snap_rho
-from unitopia_widget.layout.transfer import Readback
+from unitopia_widget.layout.prepare.lattice import Region, fitting_lattice
+from unitopia_widget.layout.step.optim import Adam
+from unitopia_widget.layout.step.raster import PATCH_SIDES, SPRITE_SIDE, Planner, RasterGrid, snap_rho
+from unitopia_widget.layout.step.transfer import Readback
 
 from test_solver import CIRCLE, CX, CY, R, chart, circle_quality
 
@@ -96,7 +96,7 @@ def test_dust_marks_do_not_set_the_raster_resolution():
 def test_packing_keeps_clearances_exact_only_as_far_as_they_matter():
     # one huge disc among small ones: each disc updates the clearances up to the largest disc
     # still to place (here and ``later``), not the huge one's radius; the same spots result
-    from unitopia_widget.layout.pack import Packing
+    from unitopia_widget.layout.prepare.pack import Packing
     yy, xx = np.mgrid[:200, :300]
     region = Region((((xx - 150) / 140) ** 2 + ((yy - 100) / 90) ** 2 <= 1).astype(float), 1.0)
     radii = np.r_[60.0, np.random.default_rng(0).uniform(1, 4, 60)]

@@ -12,9 +12,10 @@ import unitopia_widget as uw
 from envelope import below_envelope
 from ink import ink_metrics
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.lattice import Region
-from unitopia_widget.layout.pack import Packing, packable, rows
-from unitopia_widget.layout.scales import Scales, coverage
+from unitopia_widget.layout.prepare.scale import initial_scale
+from unitopia_widget.layout.prepare.lattice import Region
+from unitopia_widget.layout.prepare.pack import Packing, packable, rows
+from unitopia_widget.layout.step.scales import Scales, coverage
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -87,7 +88,7 @@ def test_a_closed_layer_with_spread_sizes_starts_packed_at_a_scale_its_packing_h
     problem, units, center, radius = start_of(chart)
     # the lattice start overlaps spread sizes, and so does packing at the loose 75% scale
     assert disc_gaps(center, radius).min() > -0.05 * radius.min()
-    loose = engine.initial_scale(units, chart.layers, chart.canvas)[0][0]
+    loose = initial_scale(units, chart.layers, chart.canvas)[0][0]
     assert 0.9 * loose < problem.group_scale[0] < loose
     inside = ((center[:, 0] - 200) / 150) ** 2 + ((center[:, 1] - 150) / 110) ** 2 <= 1
     assert inside.all()

@@ -13,7 +13,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.design.bezier import fit_bezier
-from unitopia_widget.layout.solver import Cancelled
+from unitopia_widget.layout.prepare.problem import Cancelled
 from unitopia_widget.jupyter import notebook
 from test_runner import assert_frame_is_layout, poll
 

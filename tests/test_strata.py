@@ -11,7 +11,8 @@ import torch
 import unitopia_widget as uw
 from envelope import below_envelope
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.strata import Radial, cone_distance, shadow, shadow_distance
+from unitopia_widget.layout.prepare.scale import overfilled
+from unitopia_widget.layout.step.strata import Radial, cone_distance, shadow, shadow_distance
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -233,7 +234,7 @@ def test_a_stacks_obstacles_are_the_shadows_of_the_layers_below_call_after_call(
     the padded ink are buffers kept between calls: a second call on other coverage gives
     its own shadows, nothing of the first. With a layer that also sees another's ink itself,
     that ink is added."""
-    from unitopia_widget.layout.losses import CanvasTerms
+    from unitopia_widget.layout.step.losses import CanvasTerms
     h, w = 37, 21
     zeros = torch.zeros(3, h * w)
     rests = torch.tensor([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]])
@@ -275,8 +276,8 @@ def test_independent_scales_that_overfill_one_container_warn_and_name_the_fill()
         warnings.simplefilter("always")
         chart.layout()
     assert not [w for w in caught if "share one container" in str(w.message)]
-    assert engine.overfilled(chart.layers, "shared") == []
+    assert overfilled(chart.layers, "shared") == []
     for j in range(3):
         chart.layer(str(j)).set(fill=None)
-    assert engine.overfilled(chart.layers, "shared") == [] \
-        and engine.overfilled(chart.layers, "independent") == [(["0", "1", "2"], 1.5)]
+    assert overfilled(chart.layers, "shared") == [] \
+        and overfilled(chart.layers, "independent") == [(["0", "1", "2"], 1.5)]

@@ -8,9 +8,9 @@ import torch
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.placement import Placement
+from unitopia_widget.layout.step.placement import Placement
 from unitopia_widget.layout.solver import solve
-from unitopia_widget.layout.uncross import ink_pairs, turns
+from unitopia_widget.layout.rules.uncross import ink_pairs, turns
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

@@ -17,7 +17,7 @@ import pandas as pd
 from .chart import Chart
 from .design.files import load_design
 from .demo import demo_chart
-from .layout.schedule import SCHEDULE
+from .layout.rules.schedule import SCHEDULE
 
 
 def _bar(stream):

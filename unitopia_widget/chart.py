@@ -13,8 +13,9 @@ import numpy as np
 import pandas as pd
 
 from .layout import engine
+from .layout.prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, overfilled
 from .layout.frames import Frames
-from .design.encodings import (NUMERIC_CHANNELS, invalid_rows, titles as row_titles, tooltip_fields,
+from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, titles as row_titles, tooltip_fields,
                                warn_small_marks)
 from .output import animation, html
 from .output.files import atomic_write, write_json
@@ -83,7 +84,7 @@ class Chart(HandControl):
         categories = {c: v for c, v in (("by", by), ("shape", shape)) if v is not None}
         missing_by = np.zeros(len(df), bool)
         for channel, column in categories.items():
-            engine.check_column(df, channel, column)
+            check_column(df, channel, column)
             missing_by |= df[column].isna().to_numpy()
         if opts.pop("dropna", False):
             bad = invalid_rows(df, opts) | invalid_position_rows(df, opts) | missing_by
@@ -244,13 +245,13 @@ class Chart(HandControl):
         A run after a change starts from the last layout (``fresh=True``: from scratch)."""
         self.bind_check()
         self._check_pins()
-        for names, total in engine.overfilled(self.layers, self.scales):
+        for names, total in overfilled(self.layers, self.scales):
             warnings.warn(f"layers {names} share one container under scales='independent', where "
                           f"each open layer's marks cover its own fill of it (by default "
-                          f"{engine.DEFAULT_OPEN_FILL:g}): {total:.0%} of the container in all, "
-                          f"more than marks can cover ({engine.MAX_COVER:.0%}), so the layers "
+                          f"{DEFAULT_OPEN_FILL:g}): {total:.0%} of the container in all, "
+                          f"more than marks can cover ({MAX_COVER:.0%}), so the layers "
                           f"packed last shrink to fit; give them fills that add up to at most "
-                          f"{engine.MAX_COVER:g} (layer(name).set(fill=...)) or use "
+                          f"{MAX_COVER:g} (layer(name).set(fill=...)) or use "
                           f"scales='shared'", stacklevel=2)
         origin, inputs = self._start_from(fresh)
         kept = Frames()

@@ -1,7 +1,7 @@
 """Hand control of a chart: pins, replacing the data, and the warm start between runs.
 
 ``Chart`` takes these methods (and the widget forwards them). A run after a change
-starts from the last layout (``layout.warm``); a run with nothing changed since the last
+starts from the last layout (``layout.prepare.warm``); a run with nothing changed since the last
 one starts from where that one started, so it gives the same placements.
 """
 from __future__ import annotations
@@ -14,7 +14,7 @@ import pandas as pd
 from .design.encodings import tooltip_fields
 from .design.pins import Pin, check_pin, json_label, pin_values, row_labels
 from .design.validate import check_finite
-from .layout.warm import snapshot
+from .layout.prepare.warm import snapshot
 
 
 class HandControl:

@@ -26,7 +26,7 @@ from .pins import Pinning
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
 from .runner import Runner
-from ..layout.solver import Cancelled
+from ..layout.prepare.problem import Cancelled
 
 STATIC = pathlib.Path(__file__).parent.parent / "static"
 

@@ -1,6 +1,6 @@
 """Axes of the position channels in the export (``axes=True``).
 
-Each bound ``x=``/``y=`` of a layer (a ``layout.positions.Axis`` the layout
+Each bound ``x=``/``y=`` of a layer (a ``layout.prepare.positions.Axis`` the layout
 kept in ``result.axes``) is drawn as ``<g class="axis" data-channel="x|y"
 data-layer=...>``: a line along the extent the values were mapped to, below
 the container (x) or left of it (y) (above or right of it when the canvas leaves no

@@ -140,7 +140,7 @@ def _rows_label(layer) -> str:
 
 
 def sections(df: pd.DataFrame, layers, units, boxes: np.ndarray, room: float = np.inf) -> list[Section]:
-    """The legend of ``layers`` over ``units`` (engine.Units). ``boxes``: ``(N, 2)`` drawn
+    """The legend of ``layers`` over ``units`` (design.units.Units). ``boxes``: ``(N, 2)`` drawn
     box width and height per unit, canvas px (from the placements); ``room``: the height a
     size legend's marks may take together before it shows only its two end values."""
     rows = df.loc[units.rows]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..layout import engine
+from ..layout.prepare.scale import initial_scale
 from . import legend as legend_mod, legend_draw
 from .composite import chart_png
 from .export import to_svg
@@ -69,7 +69,7 @@ def unit_boxes(chart, units) -> np.ndarray:
         return table[["width", "height"]].to_numpy(dtype=float)
     scale = np.asarray(chart.result.scale, dtype=float) if chart.result is not None else None
     if scale is None or scale.ndim:   # per-layer scales of another layout: start afresh
-        scale = engine.initial_scale(units, chart.layers, chart.canvas)[0]
+        scale = initial_scale(units, chart.layers, chart.canvas)[0]
     return np.stack([2 * units.half_w * scale, 2 * units.half_h * scale], axis=1)
 
 

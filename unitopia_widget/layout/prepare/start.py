@@ -10,7 +10,6 @@ pull hardest (or nearest the container's centre), the way they would settle.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,21 +17,16 @@ import torch
 from scipy.spatial import cKDTree
 
 from .curves import CurveTrack
-from ..design.emitters import CurveEmitter, GridEmitter
-from ..design.encodings import footprint
-from ..design.forces import potential
-from .placement import DRIFT_DECAY
-from .strata import Radial, shadow, shadow_distance, sweep_of
+from ...design.emitters import CurveEmitter, GridEmitter
+from ...design.encodings import footprint
+from ...design.forces import potential
+from ..step.placement import DRIFT_DECAY
+from ..step.strata import Radial, shadow, shadow_distance, sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
-CROWDED = 0.6      # footprint discs over container area past which an open fill is checked
-# how much more footprint area a pile settles into than the start's greedy disc packing
-# holds: open piles at the default steps settled without legalising up to 1.14x (circles),
-# 1.18x (six-armed flakes) and 1.48x (stars) of it, and failed at 1.29x and 1.35x
-PACK_SLACK = 1.15
 
 
 @dataclass
@@ -105,7 +99,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
                                                         rest[under], radius[under]))
                 s.center[idx] = _still(layer, units, idx, region, r, ranks, scale, taken[key],
                                        packings, key, float(radius.max()), canvas,
-                                       _later(units, layers, order, i, radius), generator)
+                                       later_radius(units, layers, order, i, radius), generator)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
         if key in packings and emitter is not None:   # emitted marks take room from packed ones
@@ -133,105 +127,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
     return s
 
 
-def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps):
-    """``(G,)`` starting scales. A controlled group with layers packed by size starts at the
-    largest scale (up to ``caps (L,)``, the widest disc) at which those layers still pack,
-    largest mark first, into their containers (bisection on the log scale). A fixed group
-    (open layers at their ``fill``) whose footprints crowd their containers past ``CROWDED``
-    is lowered to ``PACK_SLACK`` times the largest scale at which they pack: spiky marks need
-    more room than their ink (snowflakes, stars; margins too), and a fill their footprints
-    cannot reach would start the pile overflowing the container (the layers resting on it
-    outside it), never to settle."""
-    out = np.array(group_scale, dtype=float)
-    rho = min(1.0, 600.0 / max(canvas))
-    radius, regions = footprint_radius(units), {}
-    for g in range(len(out)):
-        members = [i for i in order if scale_group[i] == g and layers[i].emitter is None]
-        if group_free[g]:
-            if not any(packable(radius[m], units.half_w[m], units.half_h[m])
-                       for m in (units.layer == i for i in members)):
-                continue
-        elif not members or any(thin(units.half_w[m], units.half_h[m]).any()
-                                for m in (units.layer == i for i in members)):
-            continue   # thin marks' discs overstate the room they need
-        for i in members:
-            key = repr(layers[i].region.to_json())
-            if key not in regions:
-                regions[key] = Region(layers[i].region.coverage(canvas, rho), rho)
-
-        def fits(scale: float) -> bool:
-            packings = {}
-            for i in members:
-                key, r = repr(layers[i].region.to_json()), radius[units.layer == i] * scale
-                if key not in packings:
-                    mine = np.isin(units.layer, members)
-                    packings[key] = Packing(regions[key], STEP * float(np.median(radius[mine])) * scale,
-                                            float(radius[mine].max()) * scale)
-                pack = packings[key]
-                ranks = emission_ranks(units.order[units.layer == i])
-                cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
-                later = _later(units, layers, members, i, radius) * scale
-                if not pack.place(r, cost, ranks, later=later, until_miss=True)[1]:
-                    return False
-            return True
-
-        if not group_free[g]:
-            # the solver packs shapes tighter than the start's discs (PACK_SLACK)
-            probe = out[g] / math.sqrt(PACK_SLACK)
-            if _crowding(units, layers, members, radius * probe, regions) > CROWDED \
-                    and not fits(probe):
-                hi = math.log(probe)
-                lo = hi - math.log(2.0)
-                for _ in range(4):
-                    if fits(math.exp(lo)):
-                        break
-                    hi, lo = lo, lo - math.log(2.0)
-                lo = _bisect(fits, lo, hi)
-                _warn_fill(layers, members, (math.exp(lo) / probe) ** 2)
-                out[g] = math.exp(lo) * math.sqrt(PACK_SLACK)
-            continue
-        top = math.log(min(caps[i] for i in members))
-        lo, hi = math.log(out[g]), top
-        if lo >= hi or not fits(out[g]):
-            lo, hi = lo - math.log(2.0), min(lo, top)
-        if fits(math.exp(hi)):
-            lo = hi
-        out[g] = math.exp(_bisect(fits, lo, hi) if lo < hi else lo)
-    return out
-
-
-def _bisect(fits, lo: float, hi: float) -> float:
-    """The log scale in ``[lo, hi]`` (``fits(exp(lo))`` true) where ``fits`` turns false,
-    to six halvings: the largest scale found that fits."""
-    for _ in range(6):
-        mid = (lo + hi) / 2
-        lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
-    return lo
-
-
-def _warn_fill(layers, members, kept: float) -> None:
-    """Warn, for the layers of ``members`` that set ``fill=`` themselves, that their marks
-    cover only ``kept`` of the fill asked for (the share their footprints pack)."""
-    for i in members:
-        if layers[i].fill is not None:
-            warnings.warn(f"layer {layers[i].name!r}: fill={layers[i].fill:g} is more than its "
-                          f"marks' footprints pack into the container (spiky shapes and margins "
-                          f"need more room than their ink); laid out at "
-                          f"fill={layers[i].fill * kept:.2g}, the most that packs. Lower fill= "
-                          f"or use boundary='closed' to fill the container", stacklevel=2)
-
-
-def _crowding(units, layers, members, radius, regions) -> float:
-    """The largest share of one container's area that the footprint discs ``radius (N,)``
-    (canvas px) of the layers ``members`` sharing it would cover."""
-    covered = {}
-    for i in members:
-        key = repr(layers[i].region.to_json())
-        covered[key] = covered.get(key, 0.0) + float((math.pi * radius[units.layer == i] ** 2).sum())
-    return max(area / max(regions[key].area, 1e-9) for key, area in covered.items())
-
-
-def _later(units, layers, order, i, radius) -> float:
+def later_radius(units, layers, order, i, radius) -> float:
     """The largest footprint radius (``radius (N,)``) of the layers after ``i`` in ``order``
     that share its container: how far a packing's clearances must stay exact for them."""
     key = repr(layers[i].region.to_json())
@@ -245,7 +141,7 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
     along the container, spread sizes packed by size (one packing per container, shared by
     the layers in it), else lattice spots ranked by the forces. A closed container with no
     force is packed from its centre out, but the marks ``_apart`` picks start scattered over
-    it (drawn from ``generator``). ``later``: see ``_later``."""
+    it (drawn from ``generator``). ``later``: see ``later_radius``."""
     container = layer.region
     if _lengthwise(layer, units, idx) and key not in packings:
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]

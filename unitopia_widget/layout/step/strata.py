@@ -29,7 +29,7 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
-from ..design.forces import DirectionalForce, PointForce
+from ...design.forces import DirectionalForce, PointForce
 
 RAY_STEP = 1.0     # raster px between samples along a ray
 RAY_SPACING = 2.0  # raster px between neighbouring rays at the farthest pixel, at most

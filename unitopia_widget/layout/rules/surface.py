@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from .strata import RadialShadow
+from ..step.strata import RadialShadow
 
 BURIED = 0.5   # share of a mark's alpha on its obstacle above which it is lifted
 CLEAR = 0.01   # share of its alpha a lifted mark may keep on the obstacle or outside

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import torch
 
-from .pack import thin
+from ..prepare.pack import thin
 
 CROSS_ANGLE = math.radians(5.0)    # long axes further apart than this cross (closer: they lie alongside)
 LEAST_INK = 0.5                    # raster px^2 of shared ink (both alphas > 0.5) that make a crossing

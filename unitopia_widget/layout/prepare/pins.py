@@ -14,7 +14,7 @@ import math
 import numpy as np
 import torch
 
-from ..design.emitters import CurveEmitter
+from ...design.emitters import CurveEmitter
 from .lattice import Region
 from .start import footprint_radius
 from .warm import free_room, replace_start

@@ -18,9 +18,9 @@ import math
 import numpy as np
 import torch
 
-from ..design.encodings import footprint
-from .fields import padded
-from .raster import Planner, RasterGrid, render_samples
+from ...design.encodings import footprint
+from ..prepare.fields import padded
+from ..step.raster import Planner, RasterGrid, render_samples
 
 FINE_RHO = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
 MAX_FINE = 24_000_000   # fine raster px over all layer slabs at most (more get coarser)

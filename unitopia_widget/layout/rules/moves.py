@@ -7,11 +7,11 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from ..design.encodings import footprint
-from .pack import thin
-from .placement import Placement
+from ...design.encodings import footprint
+from ..prepare.pack import thin
+from ..step.placement import Placement
 from .relocate import hole_need, holes, unit_overlap
-from .scales import Scales
+from ..step.scales import Scales
 from .surface import buried
 from .uncross import ink_pairs, turns
 

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ..design.encodings import footprint
+from ...design.encodings import footprint
 from .lattice import Region
 
 PHASES = (0.0, 0.25, 0.5, 0.75)   # lattice offsets tried, in cells, along x and y

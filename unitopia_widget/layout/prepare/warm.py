@@ -20,10 +20,10 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
-from ..design.encodings import footprint
+from ...design.encodings import footprint
 from .lattice import Region
 from .pack import STEP, Packing
-from .placement import Placement
+from ..step.placement import Placement
 from .start import footprint_radius
 
 

@@ -15,9 +15,9 @@ import numpy as np
 import torch
 
 from .moves import relocate, rescale_moments, resurface, uncross
-from .optim import Adam
-from .placement import Placement
-from .scales import Scales, coverage
+from ..step.optim import Adam
+from ..step.placement import Placement
+from ..step.scales import Scales, coverage
 
 
 @dataclass

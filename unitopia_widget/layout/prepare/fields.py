@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import ndimage
 
-from .raster import RasterGrid
+from ..step.raster import RasterGrid
 
 
 def padded(coverage: np.ndarray, grid: RasterGrid) -> np.ndarray:

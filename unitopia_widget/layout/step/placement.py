@@ -108,3 +108,14 @@ class Placement:
         self.t.copy_(torch.minimum(torch.maximum(self.t, low), size - low))
         for track in self.tracks:
             track.project()
+
+
+def frame(place: Placement, scale: np.ndarray) -> np.ndarray:
+    """float32 ``(N, 4)``: x, y, angle (degrees), the unit's global scale."""
+    with torch.no_grad():
+        center, angle = place.transforms()
+        out = torch.empty((center.shape[0], 4), dtype=torch.float32)
+        out[:, :2] = center.cpu()
+        out[:, 2] = torch.rad2deg(angle).cpu()
+        out[:, 3] = torch.as_tensor(scale, dtype=torch.float32)
+    return out.numpy()

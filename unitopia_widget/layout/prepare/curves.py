@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from ..design.bezier import Curve
+from ...design.bezier import Curve
 
 
 class CurveTrack:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
-from ..design.positions import POSITION_CHANNELS, position_scale
+from ...design.positions import POSITION_CHANNELS, position_scale
 from .lattice import Region
 from .pack import Packing
 from .start import footprint_radius

@@ -13,9 +13,9 @@ import numpy as np
 import torch
 from scipy import ndimage
 
-from ..design.encodings import footprint
-from .pack import thin
-from .raster import RasterGrid
+from ...design.encodings import footprint
+from ..prepare.pack import thin
+from ..step.raster import RasterGrid
 
 
 def hole_need(half_w: np.ndarray, half_h: np.ndarray, margin: np.ndarray,

@@ -1,0 +1,1 @@
+"""The schedule: the rules run on the solver's shared state after every step."""
