@@ -13,7 +13,7 @@ from unitopia_widget.design.encodings import footprint
 from unitopia_widget.layout.step.placement import Placement
 from unitopia_widget.layout.step.raster import RasterGrid
 from unitopia_widget.layout.rules.relocate import hole_need, holes
-from unitopia_widget.layout.step.room import empty_share
+from unitopia_widget.layout.rules.measure_room import empty_share
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

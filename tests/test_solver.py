@@ -10,8 +10,11 @@ from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
-from unitopia_widget.layout.step.scales import Scales
-from unitopia_widget.layout.rules.schedule import BestLoss, Rest, StartPolish
+from unitopia_widget.layout.rules import Steps
+from unitopia_widget.layout.rules.best_loss import BestLoss
+from unitopia_widget.layout.rules.fill_scale import grow_outside
+from unitopia_widget.layout.rules.rest import Rest
+from unitopia_widget.layout.rules.start_polish import StartPolish
 from unitopia_widget.layout.prepare import assemble
 from unitopia_widget.layout.prepare.problem import Problem
 from unitopia_widget.layout.solver import Result, solve
@@ -242,11 +245,8 @@ def test_cuda_layout_matches_the_cpu_quality():
 def test_room_lets_margins_poke_out_before_the_scale_stops_growing():
     # a margin band pressed on the edge pokes out before the ink: snowflakes (margin 0.1)
     # stopped growing at 0.5% of footprint outside, 0.00% of ink, 8.6% empty (4.1% now)
-    p = SimpleNamespace(terms=SimpleNamespace(penalty=torch.zeros(2, 4)), scale_group=np.array([0, 1]),
-                        group_scale=np.array([1.0, 1.0]), group_free=np.array([True, True]),
-                        layer=np.array([0, 0, 1, 1]), margin=np.array([0.0, 0.0, 0.1, 0.1]),
-                        grow_overlap=0.01)
-    np.testing.assert_allclose(Scales(p).grow_outside, [0.004, 0.01])
+    margin, unit_group = np.array([0.0, 0.0, 0.1, 0.1]), np.array([0, 0, 1, 1])
+    np.testing.assert_allclose(grow_outside(margin, unit_group, 2), [0.004, 0.01])
 
 
 @pytest.mark.parametrize("sign", [1.0, -1.0])
@@ -267,9 +267,7 @@ def test_the_settle_under_forces_goes_on_while_one_mark_still_falls():
     # a large pile's jitter throws a different mark that far each window, and is at rest
     n = 40
     now = torch.zeros(n, 2)
-    p = SimpleNamespace(settle_motion=0.75, patience=12, max_iterations=600,
-                        polish_iterations=60, polish_shrink=0.01)
-    s = SimpleNamespace(p=p, place=SimpleNamespace(transforms=lambda: (now, None)),
+    s = SimpleNamespace(p=SimpleNamespace(max_iterations=600), steps=Steps(), place=SimpleNamespace(transforms=lambda: (now, None)),
                         stage=np.zeros(n, int), poured=0, window_start=now.clone(),
                         force_layers=[([0], [uw.DirectionalForce(90)])], radius=1.0,
                         travelling=False, straggling=False, calm=True, moving=None,

@@ -15,7 +15,8 @@ from unitopia_widget.layout import engine
 from unitopia_widget.layout.prepare.scale import initial_scale
 from unitopia_widget.layout.prepare.lattice import Region
 from unitopia_widget.layout.prepare.pack import Packing, packable, rows
-from unitopia_widget.layout.step.scales import Scales, coverage
+from unitopia_widget.layout.rules.measure_room import coverage, room
+from unitopia_widget.layout.step.scales import Scales
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -202,9 +203,9 @@ def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
     inside = problem.terms.inside.numpy()
     full_a = torch.as_tensor(np.nonzero(inside[0] >= 0.5)[0])      # ink over all of bag a
     ink = torch.ones(len(full_a))
-    assert not ctl.room(coverage(problem, ink, full_a))[0]             # a is full: no growth
+    assert not room(problem, ctl, coverage(problem, ink, full_a))[0]             # a is full: no growth
     nothing = torch.zeros(0, dtype=torch.long)
-    assert ctl.room(coverage(problem, torch.zeros(0), nothing))[0]     # both empty: room
+    assert room(problem, ctl, coverage(problem, torch.zeros(0), nothing))[0]     # both empty: room
 
 
 def test_marks_too_few_to_fill_a_closed_container_spread_over_it():

@@ -13,7 +13,7 @@ from unitopia_widget.layout import engine
 from unitopia_widget.layout.step.losses import CanvasTerms
 from unitopia_widget.layout.solver import solve
 from unitopia_widget.layout.step.strata import Radial
-from unitopia_widget.layout.rules.surface import against, buried, strata_order
+from unitopia_widget.layout.rules.resurface import against, buried, strata_order
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 

@@ -4,7 +4,7 @@
 small made-up dataset of task durations) and writes it as SVG, PNG or design
 JSON, with a progress bar on stderr. ``explain design.json --data rows.csv`` lays
 out a saved design on its data and prints which phases and rules of the solver's
-schedule ran, with the iterations each acted on.
+schedule apply to it, with the iterations each acted on, and which rules do not apply.
 """
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ import pandas as pd
 from .chart import Chart
 from .design.files import load_design
 from .demo import demo_chart
-from .layout.rules.schedule import SCHEDULE
+from .layout.rules import PHASES, SCHEDULE
 
 
 def _bar(stream):
@@ -63,7 +63,8 @@ def main(argv=None) -> int:
 
 def _explain(design_path: str, data_path: str) -> int:
     """Lay out the design at ``design_path`` on the rows of ``data_path``; print the
-    schedule: each phase's iterations, then each of its rules' (0: it never acted)."""
+    schedule: each phase's iterations, then those of each rule that applies to the layout
+    (0: it never acted), then the rules that do not apply."""
     design = load_design(design_path)
     chart = Chart(pd.read_csv(data_path), canvas=design.get("canvas", (800, 500)))
     chart.apply_design(design)
@@ -71,14 +72,18 @@ def _explain(design_path: str, data_path: str) -> int:
     r = chart.result
     print(f"{design_path}: {len(chart.placements)} marks, {r.iterations} iterations, "
           f"{r.seconds:.1f} s, overlap {100 * r.stats['overlap']:.2f}%")
-    for phase in ("settle", "polish"):
-        print(f"{phase:<14}{r.phases.get(phase, 0):6d}")
+    for phase in PHASES:
+        if phase not in r.phases:
+            continue
+        print(f"{phase:<14}{r.phases[phase]:6d}")
         for rule in SCHEDULE:
-            if rule.phase == phase:
+            if rule.phase == phase and rule.name in r.rules:
                 every = "  (every patience window)" if rule.window else ""
                 print(f"  {rule.name:<12}{r.phases.get(f'{phase}.{rule.name}', 0):6d}{every}")
+    idle = [rule.name for rule in SCHEDULE if rule.name not in r.rules]
+    if idle:
+        print(f"not applying: {', '.join(idle)}")
     return 0
-
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -1,11 +1,12 @@
 """The layout solver: Adam on translations and rotations, a controller on the global scale.
 
 Each iteration renders the marks, steps Adam and reads the loss back; then the rules
-of ``schedule.SCHEDULE`` run on the shared ``schedule.State``: a *settle* phase (forces
+of ``rules.SCHEDULE`` run on the shared ``rules.State``: a *settle* phase (forces
 pull, controlled scales grow while there is room and give way when marks crowd, marks
-come to rest, jammed ones relocate, crossing thin ones turn, held layers pour) and a
-*polish* phase (scales frozen, steps decaying, legalising rounds). ``Result.phases``
-counts the iterations each phase and rule acted on.
+come to rest, jammed ones relocate, crossing thin ones turn, held layers pour), a
+*polish* phase (scales frozen, steps decaying, legalising rounds) and, unless cancelled,
+a *finish* (hollow marks' contacts cleared). ``Result.phases`` counts the iterations each
+phase and rule acted on; ``Result.rules`` names the rules that apply to the layout.
 The scale is controlled rather than learned because a gradient balance
 between fill and overlap settles at a few percent of overlap with spiky marks.
 Frames ``(N, 4)`` float32 (x, y, angle in degrees, global scale) go to
@@ -24,11 +25,10 @@ import torch
 from ..design.encodings import footprint
 from ..design.forces import potential
 from .prepare.problem import Problem
-from .rules import contacts
-from .rules.schedule import State, run
+from .rules import SCHEDULE, STEPS, State, run, start
 from .step.losses import CanvasLoss, shares
 from .step.optim import Adam
-from .step.placement import Placement, frame
+from .step.placement import frame
 from .step.raster import Planner, render_samples
 from .step.scales import Scales
 from .step.transfer import Readback, upload
@@ -46,14 +46,15 @@ class Result:
     cancelled: bool
     stats: dict = field(default_factory=dict)
     unit_scale: np.ndarray | None = None   # (N,) global scale of each unit's group
-    phases: dict = field(default_factory=dict)  # "settle"/"polish" and "phase.rule": iterations
+    phases: dict = field(default_factory=dict)  # "settle"/"polish"/"finish" and "phase.rule": iterations
+    rules: tuple = ()                           # the names of the rules that apply to this layout
     axes: list = field(default_factory=list)    # positions.Axis of each bound x=/y= channel
 
 
 def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
           cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None,
           start_frame: bool = True) -> Result:
-    """Run the layout: render, step, read back, then the rules of ``schedule.SCHEDULE``.
+    """Run the layout: render, step, read back, then the rules of ``rules.SCHEDULE``.
     ``start_frame=False``: the caller has sent the start frame (``build_problem``'s ``on_start``)."""
     p = problem
     dev = torch.device(p.device)
@@ -66,7 +67,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     ctl = Scales(p)
     radius = float(np.mean(np.hypot(p.half_w, p.half_h) * ctl.unit_scale()))
     place = p.placement
-    params = [{"params": place.parameters(), "lr": p.lr * radius}]
+    steps = STEPS
+    params = [{"params": place.parameters(), "lr": steps.lr * radius}]
     if place.angle_params():
         params.append({"params": place.angle_params(), "lr": 0.05})
     optimizer = Adam(params, betas=(0.8, 0.95))
@@ -82,12 +84,14 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                    np.stack([p.half_w, p.half_h], 1))
     ink_t = torch.as_tensor(ink, device=dev, dtype=torch.float32)
     # marks placed where the forces pull them start at rest; emitted ones start travelling
-    s = State(p=p, ctl=ctl, place=place, optimizer=optimizer, radius=radius,
+    s = State(p=p, steps=steps, ctl=ctl, place=place, optimizer=optimizer, radius=radius,
               force_layers=force_layers,
               stage=np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage),
               window_start=place.transforms()[0].detach().clone(), travelling=p.travelling,
               base_lrs=[g["lr"] for g in optimizer.param_groups],
-              polish_left=p.polish_iterations, room=np.zeros(ctl.count, dtype=bool))
+              polish_left=steps.polish_iterations, room=np.zeros(ctl.count, dtype=bool))
+    start(s)
+    applying = tuple(rule.name for rule in SCHEDULE if rule.applies(s))
     if s.stage.max() > 0:
         place.hold(s.stage > s.poured)
     if on_frame is not None and start_frame:   # the start: shown before the first steps
@@ -107,9 +111,9 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         values, index, owner = render_samples(center, angle, hw, hh, plan, p.pyramids, p.grid)
         loss = CanvasLoss.apply(values, index, sample_layer, p.terms)
         if s.phase == "polish":   # legalising rounds: no force presses the marks together
-            weight = p.force_weight * p.polish_force * (s.rounds == 0)
+            weight = steps.force_weight * steps.polish_force * (s.rounds == 0)
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle
-            weight = p.force_travel if s.travelling else p.force_weight
+            weight = steps.force_travel if s.travelling else steps.force_weight
         for members, fs in force_layers:
             loss = loss + weight * potential(fs, center[members]).mean() / radius
         if p.anchor is not None:
@@ -131,9 +135,10 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
         s.values, s.index, s.owner = values, index, owner
         run(s)
+    if not cancelled:
+        s.phase = "finish"
+        run(s)
     unit_scale = ctl.unit_scale()
-    if not cancelled and p.regions and p.ink_share is not None and (p.ink_share < 1.0).any():
-        _clear_contacts(p, place, unit_scale, rotating)
     center, angle = place.transforms()
     if on_frame is not None:
         on_frame(frame(place, unit_scale))
@@ -142,17 +147,5 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
                   angle=np.degrees(angle.detach().cpu().numpy().astype(np.float64)),
                   scale=float(np.exp(ctl.log[0])), iterations=s.iteration,
                   seconds=time.perf_counter() - started, cancelled=cancelled, stats=stats,
-                  unit_scale=unit_scale.astype(np.float64), phases=dict(s.record),
+                  unit_scale=unit_scale.astype(np.float64), phases=dict(s.record), rules=applying,
                   axes=[] if p.anchor is None else list(p.anchor.axes))
-
-
-def _clear_contacts(p: Problem, place: Placement, unit_scale: np.ndarray, rotating: np.ndarray) -> None:
-    """Hollow marks are held to a per-unit contract: move the free units off the contacts
-    finer than the raster (``contacts.clear``). Units on a curve track or held stay."""
-    free = place.keep[:, 0].cpu().numpy() > 0
-    for track in place.tracks:
-        free[track.index.cpu().numpy()] = False
-    center, angle = place.transforms()
-    move = contacts.clear(p, center.detach(), angle.detach(), unit_scale, free, rotating)
-    with torch.no_grad():
-        place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)

@@ -36,7 +36,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                   abort=None, on_start=None) -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``; ``abort()``
     returning True between its steps raises ``Cancelled``. ``on_start(frame)`` gets the start
-    frame (``solver.frame``) as soon as the start positions are known, before the region
+    frame (``step.placement.frame``) as soon as the start positions are known, before the region
     fields and sprites: what ``solve`` would send first; ``abort`` is not asked after it."""
     order = block_order(layers)
     # each layer's widest disc, measured once for the start scale and the packed one

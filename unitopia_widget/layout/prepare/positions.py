@@ -58,7 +58,7 @@ class Axis:
 
 def bind_positions(df, layers, layer_rows):
     """``(position (N, 2), band (N, 2), scales)`` of the units of ``layers`` (concatenated in
-    layer order, as ``engine.bind`` does; see ``engine.Units``), or ``(None, None, None)`` when
+    layer order, as ``bind.bind`` does; see ``design.units.Units``), or ``(None, None, None)`` when
     no layer binds x or y. ValueError for a bad binding or ``arrange="grid"`` with one."""
     if not any(layer.encodings.get(c) is not None for layer in layers for c in POSITION_CHANNELS):
         return None, None, None

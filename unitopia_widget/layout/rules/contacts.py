@@ -1,11 +1,11 @@
-"""Contacts finer than the layout's raster, cleared on a finer one after the solve.
+"""``contacts``: contacts finer than the layout's raster, cleared on a finer one after the solve.
 
 The solver judges the marks on a raster of ``grid.rho`` px per canvas px, aimed at a
-mean footprint ``TARGET_RADIUS`` raster px across, so two marks that touch less than a
+mean footprint ``prepare.assemble.TARGET_RADIUS`` raster px across, so two marks that touch less than a
 raster pixel deep can read as apart there. That is little of all the ink, but much of a
-small ring's, and hollow marks are held to a per-unit contract (``schedule.unit_crowding``).
-Their layouts are drawn once more at ``FINE_RHO`` px per canvas px, each footprint cut at
-alpha 0.5 as a checker renders a unit. Every movable unit with more than ``CLEAR_SHARE``
+small ring's, and hollow marks are held to a per-unit contract (``legalize.unit_crowding``).
+Their layouts are drawn once more at ``fine_rho`` px per canvas px, each footprint cut at
+alpha 0.5 as a checker renders a unit. Every movable unit with more than ``clear_share``
 of its footprint pixels on a footprint it collides with, or outside its region, moves by
 whole fine pixels, at most one layout raster pixel, to the nearby spot where the fewest
 of its pixels are; it stays where it is unless that spot has fewer than where it is. A
@@ -14,6 +14,7 @@ pixel two footprints share counts for both, so every move lowers the overlap in 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import torch
@@ -21,17 +22,21 @@ import torch
 from ...design.encodings import footprint
 from ..prepare.fields import padded
 from ..step.raster import Planner, RasterGrid, render_samples
+from .state import Rule, movable
 
-FINE_RHO = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
-MAX_FINE = 24_000_000   # fine raster px over all layer slabs at most (more get coarser)
-CLEAR_SHARE = 0.002     # share of a unit's footprint pixels overlapped or outside above which it moves
-ROUNDS = 3              # passes over the units still above it
-CHUNK = 4_000_000       # fine pixels looked up at once when a unit tries its nearby spots
+
+@dataclass(frozen=True)
+class ContactsSettings:
+    fine_rho: float = 2.0          # fine raster px per canvas px: a checker's 2x supersampling
+    max_fine: int = 24_000_000     # fine raster px over all layer slabs at most (more get coarser)
+    clear_share: float = 0.002     # share of a unit's footprint pixels overlapped or outside above which it moves
+    rounds: int = 3                # passes over the units still above it
+    chunk: int = 4_000_000         # fine pixels looked up at once when a unit tries its nearby spots
 
 
 @torch.no_grad()
 def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
-          free: np.ndarray, rotating: np.ndarray) -> np.ndarray:
+          free: np.ndarray, rotating: np.ndarray, c: ContactsSettings = ContactsSettings()) -> np.ndarray:
     """``(N, 2)`` canvas px: the move of each unit that clears its contacts (0 for most).
 
     ``p``: the solver's ``Problem`` (its ``regions`` give each layer's allowed region);
@@ -44,7 +49,7 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
         return np.zeros((n, 2))
     w, h = p.grid.canvas
     n_layers = int(p.terms.blocks.shape[0])
-    rho = max(p.grid.rho, min(FINE_RHO, math.sqrt(MAX_FINE / (w * h * n_layers))))
+    rho = max(p.grid.rho, min(c.fine_rho, math.sqrt(c.max_fine / (w * h * n_layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = center.device
     hw = p.half_w * footprint(p.margin) * unit_scale
@@ -75,9 +80,9 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     offsets = torch.as_tensor(np.stack([dy[near], dx[near]], 1), device=dev)   # (D, 2)
     stay = int(np.flatnonzero((dy[near] == 0) & (dx[near] == 0))[0])
     cost_of_move = (offsets.float() ** 2).sum(1) * 1e-3        # ties go to the shortest move
-    for _ in range(ROUNDS):
+    for _ in range(c.rounds):
         share = _crowding(seen, inside, index, owner, layer, n)
-        bad = (share > CLEAR_SHARE) & free
+        bad = (share > c.clear_share) & free
         if not bad.any():
             break
         moved = False
@@ -85,7 +90,7 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
             pix = index[bounds[i]:bounds[i + 1]]
             a = int(p.layer[i])
             seen[:, pix] -= collide[:, a:a + 1]                  # the unit lifted off the raster
-            crowded = _crowded_at(seen[a], inside[a], pix, offsets, grid.shape)
+            crowded = _crowded_at(seen[a], inside[a], pix, offsets, grid.shape, c.chunk)
             within = ((offsets + torch.as_tensor(shifted[i], device=dev)) ** 2).sum(1) <= reach ** 2
             best = int(torch.argmin(torch.where(within, crowded + cost_of_move, math.inf)))
             if crowded[best] < crowded[stay]:
@@ -99,7 +104,7 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
 
 
 def _crowded_at(seen: torch.Tensor, inside: torch.Tensor, pix: torch.Tensor,
-                offsets: torch.Tensor, shape: tuple[int, int]) -> torch.Tensor:
+                offsets: torch.Tensor, shape: tuple[int, int], chunk: int) -> torch.Tensor:
     """``(D,)`` float: for each of the ``offsets (D, 2)`` (rows, columns), how many of the
     unit's ``pix (n,)`` (flat fine indices) would lie on a footprint in ``seen (S,)`` or
     outside ``inside (S,)``; inf where some would leave the raster. In chunks of offsets,
@@ -107,7 +112,7 @@ def _crowded_at(seen: torch.Tensor, inside: torch.Tensor, pix: torch.Tensor,
     rows, cols = shape
     r, c = pix // cols, pix % cols
     out = []
-    for part in torch.split(offsets, max(1, CHUNK // max(len(pix), 1))):
+    for part in torch.split(offsets, max(1, chunk // max(len(pix), 1))):
         r2, c2 = r[None] + part[:, :1], c[None] + part[:, 1:]          # (d, n)
         on = ((r2 >= 0) & (r2 < rows) & (c2 >= 0) & (c2 < cols)).all(1)
         spot = r2.clamp(0, rows - 1) * cols + c2.clamp(0, cols - 1)
@@ -142,3 +147,31 @@ def _crowding(seen, inside, index, owner, layer, n: int) -> np.ndarray:
     hit = ((seen[lay, index] > 1.5) | ~inside[lay, index]).float()
     area = torch.bincount(owner, minlength=n).clamp_min(1).float()
     return (torch.bincount(owner, weights=hit, minlength=n) / area).cpu().numpy()
+
+
+class Contacts(Rule):
+    """Once, after the last iteration of a layout that was not cancelled, with hollow marks
+    (``ink_share`` under 1) and regions to keep them in: hollow marks are held to a per-unit
+    contract, so the free units move off the contacts finer than the raster (``clear``).
+    Units on a curve track or held stay. Needed by rings and other hollow marks."""
+
+    name = "contacts"
+    phase = "finish"
+    reads = ("ctl", "place")
+    writes = ("place",)
+    Settings = ContactsSettings
+
+    def applies(self, s):
+        p = s.p
+        return bool(p.regions) and p.ink_share is not None and bool((p.ink_share < 1.0).any())
+
+    def __call__(self, s):
+        if not self.applies(s):
+            return False
+        place = s.place
+        center, angle = place.transforms()
+        move = clear(s.p, center.detach(), angle.detach(), s.ctl.unit_scale(), movable(place),
+                     place.rotating(), self.settings)
+        with torch.no_grad():
+            place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+        return True

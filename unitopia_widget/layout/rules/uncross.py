@@ -1,4 +1,4 @@
-"""Uncrossing: thin marks whose ink crosses are turned parallel and set side by side.
+"""``uncross``: thin marks whose ink crosses are turned parallel and set side by side.
 
 Two thin strokes that cross at an angle overlap by about ``w1 w2 / sin(angle)``:
 sliding one leaves that unchanged while they still cross, and turning them
@@ -13,15 +13,21 @@ overlap that translations resolve.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import torch
 
+from ...design.encodings import footprint
 from ..prepare.pack import thin
+from .state import Rule, forget, movable
 
-CROSS_ANGLE = math.radians(5.0)    # long axes further apart than this cross (closer: they lie alongside)
-LEAST_INK = 0.5                    # raster px^2 of shared ink (both alphas > 0.5) that make a crossing
-INTERIOR = 0.85                    # the axes meet within this share of both half lengths (nearer an
+
+@dataclass(frozen=True)
+class UncrossSettings:
+    cross_angle: float = math.radians(5.0)  # long axes further apart than this cross (closer: alongside)
+    least_ink: float = 0.5         # raster px^2 of shared ink (both alphas > 0.5) that make a crossing
+    interior: float = 0.85         # the axes meet within this share of both half lengths (nearer an
                                    # end, sliding that mark along resolves the overlap)
 
 
@@ -50,13 +56,14 @@ def long_axis(angle: np.ndarray, half_w: np.ndarray, half_h: np.ndarray) -> np.n
 
 
 def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.ndarray,
-          half_w: np.ndarray, half_h: np.ndarray, turnable: np.ndarray):
+          half_w: np.ndarray, half_h: np.ndarray, turnable: np.ndarray,
+          c: UncrossSettings = UncrossSettings()):
     """Moves ``[(unit, (x, y), angle), ...]`` that undo the crossings among ``pairs``.
 
     ``center (N, 2)`` px, ``angle (N,)`` radians, ``half_w``/``half_h`` ``(N,)``
     px (footprints, current scale), ``turnable (N,)`` bool (free to turn and to
     move). Both marks of a pair of thin marks whose long axes differ by more
-    than ``CROSS_ANGLE`` and meet away from their ends turn to the axes'
+    than ``c.cross_angle`` and meet away from their ends turn to the axes'
     bisector (the nearer way, mod 180 degrees), and the shorter one moves across
     the longer one's line, to the side its centre is on, until their boxes
     touch. A mark moves once per call, the most overlapped pairs first.
@@ -67,10 +74,11 @@ def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.n
     moved, out = set(), []
     for k in np.argsort(-shared, kind="stable"):
         a, b = (int(u) for u in pairs[k])
-        if shared[k] < LEAST_INK or not (thin_free[a] and thin_free[b]) or a in moved or b in moved:
+        if shared[k] < c.least_ink or not (thin_free[a] and thin_free[b]) or a in moved or b in moved:
             continue
         gap = (axis[a] - axis[b] + math.pi / 2) % math.pi - math.pi / 2   # (-pi/2, pi/2]
-        if abs(gap) <= CROSS_ANGLE or not _interior(center[a], axis[a], long[a], center[b], axis[b], long[b]):
+        if abs(gap) <= c.cross_angle or not _interior(center[a], axis[a], long[a], center[b], axis[b],
+                                                         long[b], c.interior):
             continue
         short_one, long_one = (a, b) if long[a] <= long[b] else (b, a)
         gap = gap if short_one == a else -gap          # the shorter's axis less the longer's
@@ -86,8 +94,9 @@ def turns(pairs: np.ndarray, shared: np.ndarray, center: np.ndarray, angle: np.n
     return out
 
 
-def _interior(ca, axis_a, long_a, cb, axis_b, long_b) -> bool:
-    """Whether the long axes of two boxes meet inside both, away from their ends."""
+def _interior(ca, axis_a, long_a, cb, axis_b, long_b, interior: float) -> bool:
+    """Whether the long axes of two boxes meet inside both, within ``interior`` of their
+    half lengths (away from their ends)."""
     da, db = np.array([math.cos(axis_a), math.sin(axis_a)]), np.array([math.cos(axis_b), math.sin(axis_b)])
     det = da[0] * -db[1] + db[0] * da[1]          # solve ca + s da = cb + t db
     if abs(det) < 1e-9:
@@ -95,4 +104,53 @@ def _interior(ca, axis_a, long_a, cb, axis_b, long_b) -> bool:
     d = cb - ca
     s = (d[0] * -db[1] + db[0] * d[1]) / det
     t = (da[0] * d[1] - da[1] * d[0]) / det
-    return abs(s) < INTERIOR * long_a and abs(t) < INTERIOR * long_b
+    return abs(s) < interior * long_a and abs(t) < interior * long_b
+
+
+def uncross(p, ctl, place, optimizer, values, index, owner,
+            c: UncrossSettings = UncrossSettings()) -> bool:
+    """Turn thin marks whose ink crosses parallel, side by side, and forget their Adam
+    momentum. Returns whether any moved."""
+    free = place.turnable & thin(p.half_w, p.half_h)
+    if not free.any():   # no thin mark turns: no readback
+        return False
+    free &= movable(place)
+    with torch.no_grad():
+        center, tangent = place.centers_and_tangents()
+        if place.orientation is not None:   # marks turned towards a target keep to it
+            free &= place.orientation(center, tangent)[1].cpu().numpy() <= 0
+        if not free.any():
+            return False
+        pairs, shared = ink_pairs(values, index, owner, len(p.layer))
+        if not len(pairs):
+            return False
+        scale = ctl.unit_scale() * footprint(p.margin)
+        moves = turns(pairs, shared, center.cpu().numpy().astype(float),
+                      place.theta.cpu().numpy().astype(float), p.half_w * scale, p.half_h * scale,
+                      free, c)
+        for unit, (x, y), angle in moves:
+            place.t[unit, 0], place.t[unit, 1], place.theta[unit] = x, y, angle
+    if moves:
+        forget(optimizer, (place.t, place.theta), [unit for unit, _, _ in moves])
+    return bool(moves)
+
+
+class Uncross(Rule):
+    """Each settle window (and each legalising round, run by ``legalize``): thin marks whose
+    ink crosses turn side by side; no gradient undoes a crossing. Needed by hair, strands
+    and rotating rectangles."""
+
+    name = "uncross"
+    window = True
+    reads = ("values", "index", "owner", "ctl")
+    writes = ("place", "optimizer", "since_best")
+    Settings = UncrossSettings
+
+    def applies(self, s):
+        return bool((s.place.turnable & thin(s.p.half_w, s.p.half_h)).any())
+
+    def __call__(self, s):
+        if uncross(s.p, s.ctl, s.place, s.optimizer, s.values, s.index, s.owner, self.settings):
+            s.settle_more()
+            return True
+        return False

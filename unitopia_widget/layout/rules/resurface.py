@@ -1,27 +1,34 @@
-"""Surface: marks buried in a stratum's obstacle are lifted back onto it.
+"""``resurface``: marks buried in a stratum's obstacle are lifted back onto it.
 
 A layer that rests on others sees their ink swept along its force (``strata.py``): an
 obstacle that is flat, full everywhere below their envelope. A mark wholly inside it (a
 large mark of a lower layer rolled over it) gets no gradient out of it, and its force
-presses it further in. So a free mark with more than ``BURIED`` of its alpha on its
+presses it further in. So a free mark with more than ``buried`` of its alpha on its
 obstacle is lifted against its pull (back along a directional sweep, out from the point
 that pulls it, or up to 60 degrees aside: a wall may slope across straight back), by whole
-raster px, the least distance that leaves at most ``CLEAR`` of its alpha on the obstacle or
+raster px, the least distance that leaves at most ``clear`` of its alpha on the obstacle or
 outside its region. Layers are lifted lowest stratum first, each
 against the surface as the layers below it were lifted; a mark is not cleared of its own
 layer (the gradient parts it from its neighbours), nor lifted where no spot clears it.
 """
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 import torch
 
 from ..step.strata import RadialShadow
+from .state import Rule, forget, movable
 
-BURIED = 0.5   # share of a mark's alpha on its obstacle above which it is lifted
-CLEAR = 0.01   # share of its alpha a lifted mark may keep on the obstacle or outside
-CHUNK = 32     # lift distances tried at once, raster px
-FAN = (0.0, -np.pi / 6, np.pi / 6, -np.pi / 3, np.pi / 3)   # lift directions, off straight back
+
+@dataclass(frozen=True)
+class ResurfaceSettings:
+    buried: float = 0.5    # share of a mark's alpha on its obstacle above which it is lifted
+    clear: float = 0.01    # share of its alpha a lifted mark may keep on the obstacle or outside
+    chunk: int = 32        # lift distances tried at once, raster px
+    fan: tuple = (0.0, -np.pi / 6, np.pi / 6, -np.pi / 3, np.pi / 3)   # lift directions, off straight back
 
 
 def strata_order(rests: np.ndarray) -> list:
@@ -51,7 +58,8 @@ def against(sweep, xy: np.ndarray) -> np.ndarray:
 
 
 def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
-           layer: np.ndarray, center: np.ndarray, free: np.ndarray, rho: float) -> list:
+           layer: np.ndarray, center: np.ndarray, free: np.ndarray, rho: float,
+           c: ResurfaceSettings = ResurfaceSettings()) -> list:
     """Lifts of the buried free marks: ``[(unit, (dx, dy) canvas px)]``. ``values``,
     ``index``, ``owner`` ``(M,)`` the rendered samples (``render_samples``), ``layer (N,)``
     each unit's layer, ``center (N, 2)`` canvas px, ``free (N,)`` bool, ``rho`` raster px
@@ -73,12 +81,12 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
         on = torch.zeros(len(layer), dtype=values.dtype, device=values.device) \
             .index_add_(0, owner, values * block[index.long()])
         share = (on / drawn.clamp_min(1e-6)).cpu().numpy()
-        lifting = mine[share[mine] > BURIED]
+        lifting = mine[share[mine] > c.buried]
         for unit, back in zip(lifting, against(sweep, center[lifting])):
             samples = order[starts[unit]:starts[unit + 1]]
             alpha, pixel = values[samples], index[samples].long()
-            found = [(d, step) for step in _fan(back)
-                     for d in [_lift(block, alpha, pixel, step, height, width)] if d is not None]
+            found = [(d, step) for step in _fan(back, c.fan)
+                     for d in [_lift(block, alpha, pixel, step, height, width, c)] if d is not None]
             if not found:
                 continue
             distance, step = min(found, key=lambda f: f[0])
@@ -89,36 +97,77 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
     return lifts
 
 
-def _fan(back: np.ndarray) -> list:
-    """Directions ``(2,)`` within ``FAN`` of ``back (2,)``, straight back first: a mark
+def _fan(back: np.ndarray, fan: tuple) -> list:
+    """Directions ``(2,)`` at the turns ``fan`` off ``back (2,)``, straight back first: a mark
     wedged against a sloping wall clears the obstacle a little aside from straight back."""
     out = []
-    for turn in FAN:
+    for turn in fan:
         c, s = np.cos(turn), np.sin(turn)
         out.append(np.array([c * back[0] - s * back[1], s * back[0] + c * back[1]]))
     return out
 
 
 def _lift(block: torch.Tensor, alpha: torch.Tensor, pixel: torch.Tensor, step: np.ndarray,
-          height: int, width: int):
-    """The fewest raster px along ``step (2,)`` (x, y) that leave at most ``CLEAR`` of
+          height: int, width: int, settings: ResurfaceSettings):
+    """The fewest raster px along ``step (2,)`` (x, y) that leave at most ``settings.clear`` of
     ``alpha (m,)`` at ``pixel (m,)`` (flat indices of an ``(height, width)`` raster) on
     ``block (S,)``; off the raster counts as blocked. None where no distance clears it."""
     row, col = pixel // width, pixel % width
     total = float(alpha.sum())
     if total <= 0:
         return None
-    for first in range(1, max(height, width) + 1, CHUNK):
-        distance = np.arange(first, first + CHUNK)
+    for first in range(1, max(height, width) + 1, settings.chunk):
+        distance = np.arange(first, first + settings.chunk)
         dy = torch.as_tensor(np.rint(distance * step[1]).astype(np.int64), device=pixel.device)
         dx = torch.as_tensor(np.rint(distance * step[0]).astype(np.int64), device=pixel.device)
         r, c = row[None] + dy[:, None], col[None] + dx[:, None]                 # (CHUNK, m)
         on = (r >= 0) & (r < height) & (c >= 0) & (c < width)
         covered = torch.where(on, block[(r * width + c).clamp(0, block.numel() - 1)],
                               torch.ones((), dtype=block.dtype, device=block.device))
-        clear = ((covered * alpha[None]).sum(1) <= CLEAR * total).cpu().numpy()
+        clear = ((covered * alpha[None]).sum(1) <= settings.clear * total).cpu().numpy()
         if clear.any():
             return int(distance[np.argmax(clear)])
         if not on.any():
             return None
     return None
+
+
+def resurface(p, place, optimizer, values, index, owner,
+              c: ResurfaceSettings = ResurfaceSettings()) -> bool:
+    """Lift the free marks buried in their stratum's obstacle back onto its surface and
+    forget their Adam momentum. Returns whether any moved."""
+    if p.terms.rests is None:   # no layer rests on another (the engine leaves it None)
+        return False
+    with torch.no_grad():
+        center = place.transforms()[0].cpu().numpy().astype(float)
+        lifts = buried(p.terms, values.detach(), index, owner, p.layer, center, movable(place),
+                       p.grid.rho, c)
+        for unit, (dx, dy) in lifts:
+            place.t[unit, 0] += dx
+            place.t[unit, 1] += dy
+    if lifts:
+        forget(optimizer, (place.t,), [unit for unit, _ in lifts])
+    return bool(lifts)
+
+
+class Resurface(Rule):
+    """Each settle window (and each legalising round, run by ``legalize``), on stacks: free
+    marks buried in their stratum's obstacle (a large mark of a lower layer rolled over them)
+    are lifted back onto its surface; the flat obstacle gives them no gradient out. The
+    settle then starts its patience afresh: the lifted marks have their own layer and those
+    above to part. Needed by stacks whose layers differ in size."""
+
+    name = "resurface"
+    window = True
+    reads = ("values", "index", "owner")
+    writes = ("place", "optimizer", "best", "since_best")
+    Settings = ResurfaceSettings
+
+    def applies(self, s):
+        return s.p.terms.rests is not None
+
+    def __call__(self, s):
+        if resurface(s.p, s.place, s.optimizer, s.values, s.index, s.owner, self.settings):
+            s.best, s.since_best = math.inf, 0
+            return True
+        return False

@@ -1,0 +1,36 @@
+"""``start-polish``: the end of the settle phase."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .state import Rule
+
+
+@dataclass(frozen=True)
+class StartPolishSettings:
+    polish_shrink: float = 0.008   # log-scale the controlled scales give up as the polish starts
+    reserve: int = 10              # a polish more is kept for legalising: 1 / reserve of the cap
+
+
+class StartPolish(Rule):
+    """End the settle phase when the loss stopped improving for ``patience`` iterations and
+    the marks rest (under forces: no mark travelled ``settle_motion`` mean radii in both of
+    the last two windows, ``State.calm``; a pile's noisy loss can stall while its last marks
+    still fall), or when only the polishing iterations are left: controlled scales shrink by
+    ``polish_shrink`` and freeze. Every design ends its settle here."""
+
+    name = "start-polish"
+    reads = ("since_best", "travelling", "straggling", "calm", "force_layers", "iteration")
+    writes = ("phase", "ctl")
+    Settings = StartPolishSettings
+
+    def __call__(self, s):
+        p, steps = s.p, s.steps
+        if (s.since_best >= steps.patience and not s.travelling and not s.straggling
+                and (s.calm or not s.force_layers)) \
+                or s.iteration >= p.max_iterations - steps.polish_iterations \
+                - min(steps.polish_iterations, p.max_iterations // self.settings.reserve):
+            s.phase = "polish"
+            s.ctl.log -= self.settings.polish_shrink * s.ctl.free
+            return True
+        return False
