@@ -47,10 +47,11 @@ def child(n: int, sizes: str) -> dict:
     t["torch"] = time.perf_counter()
     import unitopia_widget as uw
     from unitopia_widget.layout import engine
+    from unitopia_widget.layout.prepare.bind import bind
     t["package"] = time.perf_counter()
     df = pd.DataFrame({"value": discs.values(n, sizes)})
     chart = _chart(uw, df)
-    units = engine.bind(df, chart.layers)
+    units = bind(df, chart.layers)
     t["bind"] = time.perf_counter()
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     t["build"] = time.perf_counter()
@@ -60,7 +61,7 @@ def child(n: int, sizes: str) -> dict:
             "bind": t["bind"] - t["package"], "build problem": t["build"] - t["bind"],
             "solve": t["solve"] - t["build"], "iterations": result.iterations}
     profiler = cProfile.Profile()
-    problem = engine.build_problem(engine.bind(df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
+    problem = engine.build_problem(bind(df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
     profiler.enable()
     again = engine.solve(problem)
     profiler.disable()

@@ -20,6 +20,7 @@ import pandas as pd
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 
 ICON = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 22 22"><g fill="#333">'
         + "".join(f'<circle cx="{2 + i % 10 * 2}" cy="{2 + i // 10 * 4}" r="0.8"/>' for i in range(50))
@@ -32,16 +33,17 @@ def chart(case: str) -> uw.Chart:
     else:
         c = uw.Chart(pd.DataFrame({"cat": [f"c{i}" for i in range(10_000)]}), mark="circle",
                      color="cat", canvas=(1600, 1000))
-    units = engine.bind(c.df, c.layers)
+    units = bind(c.df, c.layers)
     n, (w, h) = len(units.rows), c.canvas
     cols = int(np.ceil(np.sqrt(n * w / h)))
     cell, k = w / cols, np.arange(n)
     scale = 0.45 * cell / units.half_w.max()
-    c._units = c._placed = units
-    c.result = SimpleNamespace(center=np.stack([(k % cols + 0.5) * cell, (k // cols + 0.5) * cell], 1),
-                               angle=np.zeros(n), unit_scale=np.full(n, scale), scale=scale,
-                               cancelled=False)
-    c.placements = engine.placements(units, c.layers, c.result)
+    result = SimpleNamespace(center=np.stack([(k % cols + 0.5) * cell, (k // cols + 0.5) * cell], 1),
+                             angle=np.zeros(n), unit_scale=np.full(n, scale), scale=scale,
+                             cancelled=False)
+    c._units = units
+    c.laid = engine.Layout(placements=engine.placements(units, c.layers, result), units=units,
+                           scale=scale, canvas=c.canvas, frames=None, result=result)
     return c
 
 

@@ -11,6 +11,7 @@ import unitopia_widget as uw
 from ink import ink_metrics
 from test_footprint import ELLIPSE, SUN, SVG_RING
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.rules import contacts
 
 
@@ -19,7 +20,7 @@ def test_two_rings_touching_less_than_a_raster_pixel_deep_move_apart():
     apart, by no more than a raster pixel; a ring clear of both stays where it is."""
     chart = uw.Chart(pd.DataFrame({"v": [1.0, 1.0, 1.0]}), mark=uw.Mark.svg(SVG_RING), size="v",
                      canvas=(400, 300), boundary="closed")
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     p = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     scale = np.full(3, 20 / (0.92 * p.half_w[0]))           # the rings' outer radius: 20 canvas px
     outer = 0.92 * p.half_w[0] * scale[0]

@@ -9,6 +9,7 @@ from scipy.stats import spearmanr
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.design.bezier import Curve, fit_bezier
 from unitopia_widget.design.emitters import CurveEmitter, GridEmitter, emitter_from_json
 from unitopia_widget.layout.solver import solve
@@ -75,7 +76,7 @@ def test_grid_layout_with_speed_zero_keeps_the_emitted_grid():
     df = ordered_frame(30)
     chart = uw.Chart(df, size="v", order="when", emitter=uw.GridEmitter(speed=0),
                      container=uw.Container.rect(100, 50, 600, 400), iterations=40)
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, chart.seed, "cpu")
     emitted = problem.placement.t.detach().numpy().astype(float)
     result = solve(problem)
@@ -139,7 +140,7 @@ def test_curve_layout_starts_marks_on_the_curve_in_order():
     df = ordered_frame(20)
     chart = uw.Chart(df, size="v", order="when", emitter=uw.CurveEmitter(S_CURVE),
                      boundary="open", fill=0.1, iterations=20)
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     start = problem.placement.t.detach().numpy().astype(float)
     assert cKDTree(bezier(S_CURVE)).query(start)[0].max() < 0.5

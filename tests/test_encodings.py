@@ -7,7 +7,7 @@ import pytest
 from PIL import ImageColor
 
 import unitopia_widget as uw
-from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.design.encodings import (CATEGORICAL, DEFAULT_COLOR, SEQUENTIAL, capped_margin,
                                        encode, palette_for, sequential)
 
@@ -22,7 +22,7 @@ def luminance(hex_color: str) -> float:
 
 def colors_of(chart) -> dict:
     """{row label: colour} of every unit, as bound for layout and export."""
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     return dict(zip(units.rows, units.colors))
 
 
@@ -190,7 +190,7 @@ def test_order_ranks_follow_the_column_with_stable_ties():
 
 
 def test_order_ranks_are_per_layer(tasks):
-    units = engine.bind(tasks, uw.Chart(tasks, by="Task", order="Duration").layers)
+    units = bind(tasks, uw.Chart(tasks, by="Task", order="Duration").layers)
     for name in "abc":
         sel = [i for i, r in enumerate(units.rows) if tasks.loc[r, "Task"] == name]
         durations = tasks.loc[[units.rows[i] for i in sel], "Duration"].to_numpy()

@@ -16,6 +16,7 @@ import unitopia_widget as uw
 from unitopia_widget.design.encodings import CATEGORICAL
 from unitopia_widget.chart import MAX_UNITS
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.output.export import png_array, to_svg
 
 NS = {"svg": "http://www.w3.org/2000/svg"}
@@ -314,16 +315,17 @@ def dotted_icon(dots: int = 50) -> str:
 def place_on_grid(chart) -> None:
     """Placements of every unit on a grid, turned a little each, as a run would leave
     them (no solve: the export is what is tested)."""
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     n, (w, h) = len(units.rows), chart.canvas
     cols = int(np.ceil(np.sqrt(n * w / h)))
     cell, k = w / cols, np.arange(n)
     scale = 0.4 * cell / units.half_w.max()
-    chart._units = chart._placed = units
-    chart.result = SimpleNamespace(center=np.stack([(k % cols + 0.5) * cell, (k // cols + 0.5) * cell], 1),
-                                   angle=(k * 37.0) % 360, unit_scale=np.full(n, scale), scale=scale,
-                                   cancelled=False)
-    chart.placements = engine.placements(units, chart.layers, chart.result)
+    result = SimpleNamespace(center=np.stack([(k % cols + 0.5) * cell, (k // cols + 0.5) * cell], 1),
+                             angle=(k * 37.0) % 360, unit_scale=np.full(n, scale), scale=scale,
+                             cancelled=False)
+    chart._units = units
+    chart.laid = engine.Layout(placements=engine.placements(units, chart.layers, result), units=units,
+                               scale=scale, canvas=chart.canvas, frames=None, result=result)
 
 
 def test_twenty_thousand_icons_export_a_png_like_the_svg_draws_them(tmp_path):

@@ -36,7 +36,7 @@ def base():
 def chart(base):
     """A copy of the laid-out base chart for one test to change (its last run included)."""
     other = Chart.from_design(base.df, base.design())
-    for name in ("placements", "result", "frames", "_units", "_placed", "_snapshot", "_origin", "_ran"):
+    for name in ("laid", "_units", "_snapshot", "_origin", "_ran"):
         setattr(other, name, getattr(base, name))   # replaced by each run, never changed in place
     return other
 

@@ -78,3 +78,27 @@ def test_the_problem_holds_data_and_no_tuning_number():
     tuning = {"lr", "patience", "grow_overlap", "final_overlap", "room_target", "settle_motion",
               "polish_iterations", "force_weight", "legalize_rounds", "stage_wait"}
     assert not tuning & {f.name for f in dataclasses.fields(Problem)}
+
+
+def test_the_package_stages_import_one_way():
+    stages = ("io", "design", "layout", "output", "jupyter")
+    for i, stage in enumerate(stages):
+        later = stages[i + 1:] + (("chart", "hand", "story") if stage != "jupyter" else ())
+        for path in modules(stage):
+            wrong = {name for name in imports_of(path) if name.split(".")[0] in later}
+            assert not wrong, f"{path.relative_to(PACKAGE)} imports {sorted(wrong)}"
+
+
+def test_output_imports_nothing_of_the_layout_and_reads_no_private_field_of_a_chart():
+    for path in modules("output"):
+        name = str(path.relative_to(PACKAGE))
+        assert not any(n == "layout" or n.startswith("layout.") for n in imports_of(path)), name
+        tree = ast.parse(path.read_text())
+        private = [node.attr for node in ast.walk(tree) if isinstance(node, ast.Attribute)
+                   and node.attr.startswith("_") and not node.attr.startswith("__")
+                   and isinstance(node.value, ast.Name) and "chart" in node.value.id]
+        private += [node.args[1].value for node in ast.walk(tree)
+                    if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "getattr"
+                    and len(node.args) > 1 and isinstance(node.args[1], ast.Constant)
+                    and str(node.args[1].value).startswith("_")]
+        assert not private, (name, private)

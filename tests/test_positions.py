@@ -9,6 +9,7 @@ from scipy.stats import spearmanr
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.prepare.lattice import Region
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -88,7 +89,7 @@ def test_the_axis_is_drawn_in_the_export_with_round_ticks(swarm):
 
 
 def targets(chart):
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     return units, problem
 

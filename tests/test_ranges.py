@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.output import publish
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -37,14 +37,14 @@ def test_a_range_maps_values_linearly_onto_extents():
     df = pd.DataFrame({"v": [1.0, 4.0, 5.5, 10.0]})
     for channel, axis in (("size", "half_h"), ("width", "half_w"), ("height", "half_h")):
         c = uw.Chart(df, mark="square", **{channel: "v", f"{channel}_range": (10, 40)})
-        side = getattr(engine.bind(df, c.layers), axis)
+        side = getattr(bind(df, c.layers), axis)
         # extents 10, 20, 25, 40 px up to the global scale: in ratio, and linear in the value
         np.testing.assert_allclose(side / side[0], [1, 2, 2.5, 4], rtol=1e-9)
 
 
 def test_without_a_range_sizes_stay_data_true():
     df = pd.DataFrame({"v": [1.0, 4.0]})
-    units = engine.bind(df, uw.Chart(df, mark="square", size="v").layers)
+    units = bind(df, uw.Chart(df, mark="square", size="v").layers)
     np.testing.assert_allclose(units.area[1] / units.area[0], 4.0)
 
 

@@ -10,6 +10,7 @@ from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.rules import Steps
 from unitopia_widget.layout.rules.best_loss import BestLoss
 from unitopia_widget.layout.rules.fill_scale import grow_outside
@@ -171,7 +172,7 @@ def test_the_start_frame_is_sent_before_the_region_fields_are_made(monkeypatch):
     assert seen == [1]
     assert len(frames) == 1 + c.result.iterations // 3 + 1   # once: the solver does not send it again
     # the same frame the solver sends first when it is given the problem
-    units = engine.bind(c.df, c.layers)
+    units = bind(c.df, c.layers)
     problem = engine.build_problem(units, c.layers, c.canvas, c.seed, "cpu")
     solved = []
     solve(problem, on_frame=solved.append, cancel=lambda: True)
@@ -214,7 +215,7 @@ def test_progress_reports_every_iteration():
 def test_cpu_device_path():
     c = chart(20, boundary="open", fill=0.3, iterations=40, device="cpu")
     assert c.device == "cpu"
-    units = engine.bind(c.df, c.layers)
+    units = bind(c.df, c.layers)
     problem = engine.build_problem(units, c.layers, c.canvas, 0, "cpu", max_iterations=30)
     assert isinstance(problem, Problem) and problem.device == "cpu"
     assert problem.placement.t.device.type == "cpu"

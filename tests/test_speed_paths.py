@@ -87,8 +87,9 @@ def test_dust_marks_do_not_set_the_raster_resolution():
     # all, the raster was the finest allowed (rho 4 here), 30x the pixels of one aimed at
     # the visible marks
     from unitopia_widget.layout import engine
+    from unitopia_widget.layout.prepare.bind import bind
     c = chart(220, boundary="open", fill=0.3, values=np.r_[np.ones(20), np.full(200, 1e-5)])
-    problem = engine.build_problem(engine.bind(c.df, c.layers), c.layers, c.canvas, 0, "cpu",
+    problem = engine.build_problem(bind(c.df, c.layers), c.layers, c.canvas, 0, "cpu",
                                    max_iterations=1)
     assert problem.grid.rho < 4.0 / 4, problem.grid.rho
 

@@ -12,6 +12,7 @@ import unitopia_widget as uw
 from envelope import below_envelope
 from ink import ink_metrics
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.prepare.scale import initial_scale
 from unitopia_widget.layout.prepare.lattice import Region
 from unitopia_widget.layout.prepare.pack import Packing, packable, rows
@@ -36,7 +37,7 @@ def disc_gaps(center: np.ndarray, radius: np.ndarray) -> np.ndarray:
 
 def start_of(chart):
     """(problem, start centres (N, 2), footprint radii (N,)) of a chart, before solving."""
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu", scales=chart.scales)
     center = problem.placement.transforms()[0].detach().numpy().astype(float)
     return problem, units, center, np.sqrt(units.area / math.pi) * problem.group_scale[0]
@@ -197,7 +198,7 @@ def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
     chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed")
     chart.layer("a").set(container=uw.Container.rect(10, 10, 180, 280))
     chart.layer("b").set(container=uw.Container.rect(210, 10, 180, 280))
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     ctl = Scales(problem)
     inside = problem.terms.inside.numpy()

@@ -11,6 +11,7 @@ import torch
 import unitopia_widget as uw
 from envelope import below_envelope
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.prepare.scale import overfilled
 from unitopia_widget.layout.step.strata import Radial, cone_distance, shadow, shadow_distance
 
@@ -128,7 +129,7 @@ def test_rings_poured_in_turn_from_an_emitter_around_the_point_rest_outside_each
 def start_table(chart) -> pd.DataFrame:
     """The start of a chart (before solving) as a placements-like table: x, y, width
     (footprint discs at the start scale), layer."""
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu", scales=chart.scales)
     center = problem.placement.transforms()[0].detach().numpy().astype(float)
     width = 2 * np.sqrt(units.area / math.pi) * problem.group_scale[0]

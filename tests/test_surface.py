@@ -10,6 +10,7 @@ import torch
 import unitopia_widget as uw
 from envelope import below_envelope
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.step.losses import CanvasTerms
 from unitopia_widget.layout.solver import solve
 from unitopia_widget.layout.step.strata import Radial
@@ -93,7 +94,7 @@ def test_small_marks_a_large_one_rolled_over_come_back_up_onto_it():
                      container=uw.Container.rect(10, 10, 380, 280),
                      forces=[uw.DirectionalForce(90)], iterations=300)
     chart.layer("1").set(blocks=["0"])
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     radius = float(np.hypot(problem.half_w, problem.half_h)[0] * problem.group_scale[0]) / 2 ** 0.5
     with torch.no_grad():

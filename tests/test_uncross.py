@@ -8,6 +8,7 @@ import torch
 
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
+from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.step.placement import Placement
 from unitopia_widget.layout.solver import solve
 from unitopia_widget.layout.rules.uncross import ink_pairs, turns
@@ -37,7 +38,7 @@ def test_two_rods_crossing_in_an_x_end_side_by_side(boundary):
     kwargs = dict(fill=0.05) if boundary == "open" else {}
     chart = uw.Chart(df, mark=ROD, rotate=True, canvas=canvas, boundary=boundary,
                      container=uw.Container.ellipse(200, 150, 180, 130), **kwargs)
-    units = engine.bind(chart.df, chart.layers)
+    units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, canvas, 0, "cpu")
     problem.placement = Placement(np.array([[200.0, 150.0], [200.0, 150.0]]), np.radians([0.0, 60.0]),
                                   np.ones(2, bool), np.ones(2, bool), "cpu")

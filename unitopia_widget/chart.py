@@ -13,14 +13,15 @@ import numpy as np
 import pandas as pd
 
 from .layout import engine
+from .layout.prepare.bind import bind
 from .layout.prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, overfilled
-from .layout.frames import Frames
 from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, titles as row_titles, tooltip_fields,
                                warn_small_marks)
 from .output import animation, html
 from .output.files import atomic_write, write_json
-from .output.publish import PageOptions, export_png, export_svg
+from .output.publish import export_png, export_svg
 from .hand import HandControl
+from .design.page import PageOptions
 from .design.scene import SCHEMA, VERSION, Layer, block_order, check_design_header
 from .design.files import design_code, load_design
 from .design.positions import POSITION_CHANNELS, invalid_position_rows
@@ -105,9 +106,7 @@ class Chart(HandControl):
                              f"dropna=True to drop them")
         self.df = df
         self.layers: list[Layer] = []
-        self.placements: pd.DataFrame | None = None
-        self.result = None
-        self.frames = None   # (F, N, 4) the last run's frames, ending on its layout
+        self.laid: engine.Layout | None = None   # the last run's layout
         self._units = None
         if by is None:
             self.add_layer("layer-1", mark=pick_mark(mark, None, shape), **opts)
@@ -209,7 +208,7 @@ class Chart(HandControl):
             raise ValueError(f"{len(layers)} layers is more than this widget lays out "
                              f"({MAX_LAYERS}); merge some layers")
         block_order(layers)
-        units = engine.bind(self.df, layers)
+        units = bind(self.df, layers)
         if len(units.rows) > MAX_UNITS:
             raise ValueError(f"{len(units.rows)} units is more than this widget lays out "
                              f"({MAX_UNITS}); sample or aggregate the rows first")
@@ -254,24 +253,29 @@ class Chart(HandControl):
                           f"{MAX_COVER:g} (layer(name).set(fill=...)) or use "
                           f"scales='shared'", stacklevel=2)
         origin, inputs = self._start_from(fresh)
-        kept = Frames()
-
-        def record(frame, *final):   # the runner's callback also takes final=True
-            kept.add(frame)
-            if on_frame is not None:
-                on_frame(frame, *final)
-
-        units, result, table = engine.layout(
-            self.df, self.layers, self.canvas, seed=self.seed, device=self.device,
-            on_frame=record, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
+        laid = engine.layout(
+            self._units, self.layers, self.canvas, seed=self.seed, device=self.device,
+            on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
             scales=self.scales, abort=abort, pins=list(self._pins.values()), previous=origin)
-        self._units, self.result, self.placements = units, result, table
-        self._remember_run(origin, inputs, units, result)
-        self.frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
-        self._placed = units   # the units of the placements, kept when the design changes
-        if not result.cancelled:
-            warn_small_marks(table, self.layers)
-        return table
+        self.laid = laid
+        self._remember_run(origin, inputs, laid.units, laid.result)
+        if not laid.result.cancelled:
+            warn_small_marks(laid.placements, self.layers)
+        return laid.placements
+
+    placements = property(lambda self: None if self.laid is None else self.laid.placements,
+                          doc="The last layout's table (``layout.engine.placements``), or None.")
+    result = property(lambda self: None if self.laid is None else self.laid.result,
+                      doc="The solver's account of the last layout (``layout.solver.Result``), or None.")
+    frames = property(lambda self: None if self.laid is None else self.laid.frames,
+                      doc="``(F, N, 4)`` the last run's frames, ending on its layout, or None.")
+    units = property(lambda self: self._units,
+                     doc="The units of the current design, bound (``design.units.Units``).")
+
+    def boxes(self, units) -> np.ndarray:
+        """``(N, 2)`` drawn box width and height of ``units``, canvas px: the last layout's when
+        it placed them, else at its global scale (or the starting one)."""
+        return engine.boxes(self.laid, units, self.layers, self.canvas)
 
     def titles(self, units=None) -> list[str]:
         """Tooltip text per unit, in unit order."""
@@ -345,7 +349,7 @@ class Chart(HandControl):
         if stale:
             raise RuntimeError(f"the layout is out of date: layer(s) {stale} now draw fewer marks "
                                f"than when it was made; run the layout again")
-        units, placed = self._units, self._placed
+        units, placed = self._units, self.laid.units
         if not (units.rows == placed.rows and np.array_equal(units.layer, placed.layer)):
             units = placed   # the design changed which rows each layer draws: keep the layout's
         return units

@@ -19,7 +19,7 @@ from .chart import Chart
 from .design.files import read_json
 from .output import animation, story_film, story_page, transition
 from .output.files import atomic_write, write_json
-from .output.page import TITLE_CHARS, check_text
+from .design.page import TITLE_CHARS, check_text
 
 STORY_SCHEMA = "unitopia-story"
 STORY_VERSION = 1

@@ -1,20 +1,49 @@
-"""From a design and a DataFrame to a solved layout: bind the rows into ``Units``
-(``prepare.bind``), build the solver's ``Problem`` (``prepare.assemble``), warm-start and pin it
-(``prepare.warm``, ``prepare.pins``), solve it (``solver``) and return the placements table."""
+"""From bound units and a design to a solved ``Layout``: build the solver's ``Problem``
+(``prepare.assemble``), warm-start and pin it (``prepare.warm``, ``prepare.pins``), solve it
+(``solver``), keep its frames (``frames``) and return the placements table with the units,
+scale, canvas and frames: the one value every output draws from. The rows are bound once,
+by the caller (``prepare.bind.bind``)."""
 from __future__ import annotations
+
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 import torch
 
 from ..design.units import Units
+from .frames import Frames
 from .prepare.assemble import build_problem, check_abort
-from .prepare.bind import bind
 from .prepare.pins import pin_problem, pinned_units
 from .prepare.problem import Cancelled
+from .prepare.scale import initial_scale
 from .prepare.warm import warm_problem
 from .solver import Result, solve
 from .step.heap import held
+
+@dataclass
+class Layout:
+    """One run's layout, what the chart keeps and every output draws from."""
+
+    placements: pd.DataFrame       # one row per unit (``placements``)
+    units: Units                   # the units placed: rows, layers, colours, boxes at scale 1
+    scale: float                   # the global scale (of scale group 0, the shared scale)
+    canvas: tuple                  # (w, h) canvas px
+    frames: np.ndarray | None      # (F, N, 4) the run's frames, ending on its layout (``frames``)
+    result: Result                 # the solver's account: iterations, quality, phases, rules
+    axes: list = field(default_factory=list)   # positions.Axis of each bound x=/y= channel
+
+
+def boxes(laid: Layout | None, units: Units, layers, canvas) -> np.ndarray:
+    """``(N, 2)`` drawn box width and height of ``units``, canvas px: the layout's when ``laid``
+    placed these units, else at its global scale (or, with no layout, the starting one)."""
+    if laid is not None and laid.units.rows == units.rows \
+            and np.array_equal(laid.units.layer, units.layer):
+        return laid.placements[["width", "height"]].to_numpy(dtype=float)
+    scale = np.asarray(laid.scale, dtype=float) if laid is not None else None
+    if scale is None or scale.ndim:   # per-layer scales of another layout: start afresh
+        scale = initial_scale(units, layers, canvas)[0]
+    return np.stack([2 * units.half_w * scale, 2 * units.half_h * scale], axis=1)
 
 
 def pick_device(device) -> str:
@@ -43,10 +72,11 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
     })
 
 
-def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
+def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
            on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None,
-           pins=(), previous=None):
-    """Bind, build and solve. Returns ``(units, result, placements DataFrame)``.
+           pins=(), previous=None) -> Layout:
+    """Build and solve the layout of ``units`` (``prepare.bind.bind(df, layers)``). Returns
+    its ``Layout``.
 
     ``cancel()`` returning True ends the solve, which keeps its last step (none taken: the
     start). ``abort()`` (a Stop) returning True during the setup or before the first step
@@ -54,20 +84,27 @@ def layout(df, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
     start (a fresh, unpinned run shows it before the fields are made), a Stop keeps the
     start as the layout. ``pins``: ``design.pins.Pin``s held in place (``layout.pins``);
     ``previous``: a ``warm.snapshot`` to start from (None: a fresh start)."""
-    units = bind(df, layers)
     check_abort(abort)
+    kept = Frames()
+
+    def record(frame, *final):   # a caller's callback may also take final=True
+        kept.add(frame)
+        if on_frame is not None:
+            on_frame(frame, *final)
+
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
     # a fresh, unpinned start is the solver's start: it is shown before the fields are made
-    early = on_frame if previous is None and len(pinned) == 0 else None
+    early = record if previous is None and len(pinned) == 0 else None
     with held():   # the iterations' scratch tensors reuse the heap, not fresh pages
         problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
                                 abort=abort, on_start=early)
         if previous is not None:
             problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
         problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
-        result = solve(problem, on_frame=on_frame, cancel=cancel, on_progress=on_progress,
+        result = solve(problem, on_frame=record, cancel=cancel, on_progress=on_progress,
                        frame_every=frame_every, start_frame=early is None)
     if result.iterations == 0 and early is None and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")
-    table = placements(units, layers, result)
-    return units, result, table
+    frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
+    return Layout(placements=placements(units, layers, result), units=units, scale=result.scale,
+                  canvas=tuple(canvas), frames=frames, result=result, axes=result.axes)

@@ -1,7 +1,7 @@
 """The settling's frames, kept for replay and animation export.
 
 A frame is float32 ``(N, 4)``: x, y (canvas px), angle (degrees), the unit's global
-scale (``solver._frame``). ``Frames`` keeps at most ``limit`` of a run's frames,
+scale (``step.placement.frame``). ``Frames`` keeps at most ``limit`` of a run's frames,
 evenly spaced: when full it drops every other one and keeps one in twice as many
 from then on. The run's final layout is always the last frame.
 """

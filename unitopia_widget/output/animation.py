@@ -72,10 +72,11 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     """The settling's frames as RGB images over white, ``scale`` px per canvas px.
     ``svg``: the chart's export (its page without the units is the backdrop)."""
     fps, seconds = check_timing(fps, seconds)
-    if chart.frames is None:
+    laid = chart.laid
+    if laid is None or laid.frames is None:
         raise RuntimeError("no settling to animate: call run() (or run(wait=True)) first")
-    units, table = chart._placed, chart.placements
-    frames = resample(chart.frames, int(round(fps * seconds)))
+    units, table = laid.units, laid.placements
+    frames = resample(laid.frames, int(round(fps * seconds)))
     vx, vy = view_of(svg)[:2]
     back = backdrop(svg, scale)
     pairs, kind = distinct(table, chart.layers, units.colors)

@@ -75,8 +75,8 @@ def content_policy(script: str) -> str:
 
 def replay(chart, count: int = REPLAY_FRAMES) -> dict:
     """``{"frames": [[x, y, angle, sx, sy per unit]...], "box": [bw, bh per unit]}``."""
-    units, table = chart._placed, chart.placements
-    frames = resample(chart.frames, min(count, len(chart.frames)))
+    units, frames = chart.laid.units, chart.laid.frames
+    frames = resample(frames, min(count, len(frames)))
     box = units.box_size
     sx = 2 * units.half_w[None] * frames[:, :, 3] / box[None, :, 0]
     sy = 2 * units.half_h[None] * frames[:, :, 3] / box[None, :, 1]

@@ -8,14 +8,11 @@ from __future__ import annotations
 
 import textwrap
 from dataclasses import dataclass
-from numbers import Real
 from xml.sax.saxutils import escape
 
 from . import legend_draw
 from .legend import CHAR_W
 
-POSITIONS = ("right", "bottom", "left", "top")
-TITLE_CHARS, CAPTION_CHARS = 200, 2000
 TITLE_FONT, CAPTION_FONT = 18, 12
 GAP = 16   # px between the canvas and what is beside it
 BORDER = 8  # px around a page that has a legend, title or caption
@@ -25,29 +22,6 @@ BORDER = 8  # px around a page that has a legend, title or caption
 class Page:
     view: tuple[float, float, float, float]   # viewBox x, y, w, h
     overlay: str                               # SVG text drawn after the units
-
-
-def check_text(name: str, value, limit: int):
-    """None or a str of at most ``limit`` characters, else a clear error."""
-    if value is None:
-        return None
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be a string or None, got {type(value).__name__}")
-    if len(value) > limit:
-        raise ValueError(f"{name} is {len(value)} characters long; at most {limit} are drawn. "
-                         f"Shorten it")
-    return value or None
-
-
-def check_position(value):
-    """'right', 'bottom', 'left', 'top' or [x, y] (the legend's top-left corner, canvas px)."""
-    if isinstance(value, str) and value in POSITIONS:
-        return value
-    if (isinstance(value, (list, tuple)) and len(value) == 2
-            and all(isinstance(v, Real) and not isinstance(v, bool) and abs(v) < 1e5 for v in value)):
-        return [float(value[0]), float(value[1])]
-    raise ValueError(f"legend position must be one of {', '.join(map(repr, POSITIONS))} or "
-                     f"[x, y] in canvas px; got {value!r:.60}")
 
 
 def compose(canvas, sections=None, position="right", title=None, caption=None) -> Page:

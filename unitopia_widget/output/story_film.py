@@ -44,7 +44,7 @@ def render(slides, plans, fps: float, hold: float, seconds: float,
     ids: dict = {}
     kinds, art, big = [], [], []
     for chart, _, states in slides:   # one sprite per art over all slides, at its largest size
-        found, kind = distinct(chart.placements, chart.layers, chart._placed.colors)
+        found, kind = distinct(chart.laid.placements, chart.layers, chart.laid.units.colors)
         local = []
         for mark, color in found:
             key = (mark.svg_fragment("m", color), tuple(float(v) for v in mark.box_size))
