@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the tests on every core (pytest-xdist; a test file stays on one worker).
+# Runs the tests on every core (pytest-xdist; a test file stays on one worker, so its module
+# fixtures, the layouts its tests share, are built once, and a notebook runs in one kernel).
 #   bash scripts/test.sh           every test: Python, JavaScript (node --test), browser
 #                                  (Playwright + Chromium), real JupyterLab, the notebooks (nbval),
 #                                  the wheel as a user installs it, and the docs (mkdocs --strict)
@@ -11,6 +12,6 @@ export OMP_WAIT_POLICY=PASSIVE
 if [ "${1:-}" = "--quick" ]; then
   shift
   exec python -m pytest tests -m "not browser and not jupyterlab and not corpus" \
-    -n auto --dist loadgroup -p no:cacheprovider "$@"
+    -n auto --dist loadfile -p no:cacheprovider "$@"
 fi
-exec python -m pytest tests notebooks --nbval-lax -n auto --dist loadgroup -p no:cacheprovider "$@"
+exec python -m pytest tests notebooks --nbval-lax -n auto --dist loadfile -p no:cacheprovider "$@"

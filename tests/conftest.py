@@ -22,12 +22,3 @@ def browser():
     """One headless Chromium for every browser and JupyterLab test of the session."""
     yield from launch()
 
-
-@pytest.hookimpl(tryfirst=True)
-def pytest_collection_modifyitems(items):
-    """Groups for pytest-xdist's ``--dist loadgroup`` (scripts/test.sh): a test file runs on one
-    worker, so its module fixtures (shared layouts) are built once, and every JupyterLab test
-    runs on the one worker that starts the server they share."""
-    for item in items:
-        group = "jupyterlab" if item.get_closest_marker("jupyterlab") else item.nodeid.split("::")[0]
-        item.add_marker(pytest.mark.xdist_group(group))
