@@ -98,11 +98,11 @@ GUIDE = [page for page in sorted((DOCS / "guide").glob("*.md")) + [DOCS / "getti
 
 @pytest.mark.parametrize("page", GUIDE, ids=[p.stem for p in GUIDE])
 def test_the_guide_examples_run_in_order(page, tmp_path, monkeypatch, one_thread):
-    """Each page's Python blocks, in order, on at most 30 rows, starting from the ``df``
+    """Each page's Python blocks, in order, on at most 16 rows, starting from the ``df``
     and ``w`` the quick start leaves."""
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
     real = uw.demo_data
-    monkeypatch.setattr(uw, "demo_data", lambda n=120, seed=7: real(n=min(n, 30), seed=seed))
+    monkeypatch.setattr(uw, "demo_data", lambda n=120, seed=7: real(n=min(n, 16), seed=seed))
     monkeypatch.chdir(tmp_path)
     df = uw.demo_data()
     scope = {"uw": uw, "df": df, "w": uw.UnitoPia(df, mark="star", size="Duration", color="Task")}
