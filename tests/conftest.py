@@ -21,3 +21,4 @@ def one_thread():
 def browser():
     """One headless Chromium for every browser and JupyterLab test of the session."""
     yield from launch()
+

@@ -29,6 +29,7 @@ def page_file(tmp_path_factory):
     return path, chart
 
 
+@pytest.mark.browser
 def test_page_renders_offline_with_tooltips_and_replays(browser, page_file):
     path, chart = page_file
     context = browser.new_context(offline=True)

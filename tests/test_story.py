@@ -221,6 +221,7 @@ def test_bad_input_is_named(story, tmp_path):
         story.save(tmp_path / "s.svg")
 
 
+@pytest.mark.browser
 def test_the_page_plays_offline_with_tooltips_and_the_next_button_moves_units(browser, story,
                                                                              tmp_path):
     path = tmp_path / "story.html"

@@ -164,6 +164,8 @@ class Chart(HandControl):
         raise KeyError(f"no layer {name!r}{closest(str(name), names)}; layers: {names}")
 
     def remove_layer(self, name) -> None:
+        """Remove the layer ``name`` (or position); refused while another layer blocks on it
+        or when it is the chart's only layer."""
         layer = self.layer(name)
         users = [other.name for other in self.layers if layer.name in other.blocks]
         if users:

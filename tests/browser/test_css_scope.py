@@ -2,9 +2,12 @@
 from __future__ import annotations
 
 import pandas as pd
+import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.design.marks import Mark
+
+pytestmark = pytest.mark.browser
 
 CSS = ("@layer x { .jp-Cell { color: rgb(255, 0, 0) } } "
        "@container (min-width: 1px) { .jp-Cell { color: rgb(255, 0, 0) } } "

@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import pytest
 import torch
 
 import unitopia_widget as uw
+
+pytestmark = pytest.mark.browser
 
 
 def test_story_widget_buttons_speed_and_index_from_python(page, page_url):

@@ -46,6 +46,7 @@ class GridEmitter:
         self.direction = _direction("GridEmitter", direction, named=())
 
     def to_json(self) -> dict:
+        """The emitter as the design JSON holds it (``docs/protocol.md``)."""
         return {"kind": "grid", "speed": self.speed, "direction": self.direction}
 
     def __eq__(self, other) -> bool:
@@ -93,9 +94,11 @@ class CurveEmitter:
 
     @property
     def points(self) -> np.ndarray:
+        """The Bezier control points, shape (3k + 1, 2), canvas px."""
         return self.curve.points
 
     def to_json(self) -> dict:
+        """The emitter as the design JSON holds it (``docs/protocol.md``)."""
         return {"kind": "curve", "points": self.points.tolist(), "speed": self.speed,
                 "direction": self.direction, "mode": self.mode}
 

@@ -24,6 +24,7 @@ class PointForce:
         self.strength = check_positive("PointForce", "strength", strength, allow_zero=True)
 
     def to_json(self) -> dict:
+        """The force as the design JSON holds it (``docs/protocol.md``)."""
         return {"kind": "point", "x": self.x, "y": self.y, "strength": self.strength}
 
     def __repr__(self) -> str:
@@ -44,10 +45,12 @@ class DirectionalForce:
 
     @property
     def vector(self) -> tuple[float, float]:
+        """The unit vector (x, y) of the pull, in canvas px (y down)."""
         a = math.radians(self.angle)
         return math.cos(a), math.sin(a)
 
     def to_json(self) -> dict:
+        """The force as the design JSON holds it (``docs/protocol.md``)."""
         return {"kind": "direction", "angle": self.angle, "strength": self.strength}
 
     def __repr__(self) -> str:

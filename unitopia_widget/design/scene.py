@@ -121,6 +121,7 @@ class Layer:
         return self.container if self.container is not None else Container.canvas()
 
     def to_json(self) -> dict:
+        """The layer as the design JSON holds it (``docs/protocol.md``)."""
         return {
             "name": self.name, "rows": self.rows, "marks": [m.to_json() for m in self.marks],
             "mark_keys": None if self.mark_keys is None else list(self.mark_keys),

@@ -123,19 +123,25 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         return self._chart.layers
 
     def layer(self, name):
+        """The layer called ``name``, or at position ``name`` (see ``Chart.layer``)."""
         return self._chart.layer(name)
 
     def add_layer(self, name: str, data: pd.DataFrame | None = None, **fields):
+        """Append a layer; ``data`` (a subset of the widget's DataFrame) picks its rows;
+        ``fields`` set it as ``Layer.set`` does."""
         return self._chart.add_layer(name, data=data, **fields)
 
     def remove_layer(self, name) -> None:
+        """Remove a layer (see ``Chart.remove_layer``)."""
         self._chart.remove_layer(name)
 
     def move_layer(self, name, position: int) -> None:
+        """Move a layer to ``position`` in drawing order."""
         self._chart.move_layer(name, position)
 
     @property
     def df(self) -> pd.DataFrame:
+        """The widget's rows (replace them with ``set_data``)."""
         return self._chart.df
 
     @property
