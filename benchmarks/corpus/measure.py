@@ -74,9 +74,11 @@ def ink_measures(svg: str, canvas, containers: dict, closed: set, fills: dict, k
         n = float(ink.sum())
         total += n
         areas.append(n)
-        # the crop's part on the canvas, in raster px
+        # the crop's part on the canvas, in raster px (empty for a unit wholly off it)
         r0, c0 = y0 * k, x0 * k
-        rs, cs = slice(max(r0, 0), min(r0 + ink.shape[0], h * k)), slice(max(c0, 0), min(c0 + ink.shape[1], w * k))
+        r1, c1 = max(r0, 0), max(c0, 0)
+        rs = slice(r1, max(r1, min(r0 + ink.shape[0], h * k)))
+        cs = slice(c1, max(c1, min(c0 + ink.shape[1], w * k)))
         part = ink[rs.start - r0:rs.stop - r0, cs.start - c0:cs.stop - c0]
         count[rs, cs] += part
         key = id(containers[layer])
