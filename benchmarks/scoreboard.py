@@ -2,6 +2,7 @@
 
     python benchmarks/scoreboard.py [--quick] [--seed S] [--n N] [--seeds 0-4]
                                     [--save out.json] [--against before.json] [--png DIR]
+    python benchmarks/scoreboard.py --show benchmarks/corpus-baseline.json [--against other.json]
 
 Per design (``corpus/generate.py`` draws them from ``--seed``): overlap and ink outside
 (% of the ink, from the SVG), empty share (% of the closed containers farther than one
@@ -69,6 +70,9 @@ def fmt(name: str, v) -> str:
 
 HEADER = ("| design | container | mark | data | force | L | bnd | n | overlap % | outside % | "
           "empty % | fill % / asked | strata | abs rho | pull | s | warn |")
+
+
+RULE = "|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 
 
 def line(r: dict) -> str:
@@ -175,7 +179,12 @@ def main(argv=None):
     ap.add_argument("--save", help="write the per-design records to this JSON file")
     ap.add_argument("--against", help="a saved board to compare with, design by design")
     ap.add_argument("--png", help="also save each chart as DIR/<id>-<seed>.png")
+    ap.add_argument("--show", help="print a saved board (its designs, totals, worst ten) and stop")
     a = ap.parse_args(argv)
+    if a.show:
+        with open(a.show) as f:
+            report(json.load(f)["designs"], a.against)
+        return
     if a.threads:
         import torch
         torch.set_num_threads(a.threads)
@@ -189,34 +198,45 @@ def main(argv=None):
         os.makedirs(a.png, exist_ok=True)
     records, t0 = [], time.perf_counter()
     print(HEADER)
-    print("|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print(RULE)
     for spec in specs:
         for seed in parse_seeds(a.seeds):
             png = os.path.join(a.png, f"{spec.id}-{seed}.png") if a.png else None
             r = run.run(spec, folder, seed, png)
             records.append(r)
             print(line(r), flush=True)
-    print(f"\nwall time {time.perf_counter() - t0:.0f} s\n\n## Totals\n")
-    print("\n".join("- " + t for t in totals(records)))
-    print("\n## Worst ten (badness: 1 = at the issue's bound on one measure)\n")
-    print(HEADER.replace("| warn |", "| warn | badness |"))
-    print("|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for r in worst(records):
-        print(line(r) + f" {badness(r):.1f} |")
-    if len(parse_seeds(a.seeds)) > 1:
-        print("\n## Spread over layout seeds\n")
-        print("\n".join(spread(records)))
-    if a.against:
-        with open(a.against) as f:
-            print("\n## Against " + a.against + "\n")
-            print("\n".join(against(records, json.load(f)["designs"])))
+    print(f"\nwall time {time.perf_counter() - t0:.0f} s")
     if a.save:
-        meta = {"seed": a.seed, "n": a.n, "seeds": a.seeds, "quick": a.quick,
+        meta = {"seed": a.seed, "n": a.n, "seeds": a.seeds, "quick": a.quick, "only": a.only,
                 "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="minutes"),
                 "machine": f"{platform.machine()}, {os.cpu_count()} cores", "python": platform.python_version()}
         with open(a.save, "w") as f:
             json.dump({"meta": meta, "designs": [{k: v for k, v in r.items() if k != "traceback"}
                                                  for r in records]}, f, indent=1)
+    report(records, a.against, table=False)
+
+
+def report(records: list, before: str | None, table: bool = True) -> None:
+    """Print the board of ``records``: the designs (``table``), totals, worst ten, the
+    spread over layout seeds (when there are several), and the change from ``before``."""
+    if table:
+        print(HEADER)
+        print(RULE)
+        print("\n".join(line(r) for r in records))
+    print("\n## Totals\n")
+    print("\n".join("- " + t for t in totals(records)))
+    print("\n## Worst ten (badness: 1 = at the issue's bound on one measure)\n")
+    print(HEADER.replace("| warn |", "| warn | badness |"))
+    print(RULE + "---:|")
+    for r in worst(records):
+        print(line(r) + f" {badness(r):.1f} |")
+    if len({r["seed"] for r in records}) > 1:
+        print("\n## Spread over layout seeds\n")
+        print("\n".join(spread(records)))
+    if before:
+        with open(before) as f:
+            print("\n## Against " + before + "\n")
+            print("\n".join(against(records, json.load(f)["designs"])))
 
 
 if __name__ == "__main__":
