@@ -81,10 +81,12 @@ def line(r: dict) -> str:
     t = r["tags"]
     fill = "" if r["fill"] is None else f"{100 * r['fill']:.0f} / {100 * r['fill_asked']:.0f}"
     return (f"| {r['id']} | {t.get('container', '')} | {t.get('mark', '')} | {t.get('data', '')} | "
-            f"{t.get('force', '')} | {t.get('layers', 1)} | {t.get('boundary', '')} | {r['units']} | "
+            f"{t.get('force', '')} | {t.get('layers', 1)} | {t.get('boundary', '')} | "
+            f"{r['units']} | "
             f"{fmt('overlap', r['overlap'])} | {fmt('outside', r['outside'])} | "
             f"{fmt('empty', r['empty'])} | {fill} | {fmt('strata', r['strata'])} | "
-            f"{fmt('rho', r['rho'])} | {fmt('pull', r['pull'])} | {fmt('seconds', r['seconds'])} | {len(r['warnings'])} |")
+            f"{fmt('rho', r['rho'])} | {fmt('pull', r['pull'])} | {fmt('seconds', r['seconds'])} | "
+            f"{len(r['warnings'])} |")
 
 
 def totals(records: list) -> list[str]:
@@ -99,16 +101,20 @@ def totals(records: list) -> list[str]:
             out.append(f"{k}: mean {100 * v.mean():.2f}%, median {100 * np.median(v):.2f}%, "
                        f"max {100 * v.max():.2f}%, over {100 * bound:g}%: {int((v > bound).sum())} "
                        f"of {len(v)}")
-    opened = [r for r in ok if r["fill"] is not None] or [{"fill": 1.0, "fill_asked": 1.0, "warnings": []}]
+    opened = [r for r in ok if r["fill"] is not None] or [{"fill": 1.0, "fill_asked": 1.0,
+                                                             "warnings": []}]
     short = [r for r in opened if r["fill"] < 0.8 * r["fill_asked"]]
-    out.append(f"fill (open): reached / asked median {np.median([r['fill'] / r['fill_asked'] for r in opened]):.2f}; "
+    reached = np.median([r["fill"] / r["fill_asked"] for r in opened])
+    out.append(f"fill (open): reached / asked median {reached:.2f}; "
                f"under 80% of the ask: {len(short)} of {len(opened)} "
                f"({sum(1 for r in short if not r['warnings'])} with no warning)")
     s, rho = col("strata"), col("rho")
     if len(s):
-        out.append(f"strata in order: mean {s.mean():.2f}, under 0.9: {int((s < 0.9).sum())} of {len(s)}")
+        out.append(f"strata in order: mean {s.mean():.2f}, under 0.9: {int((s < 0.9).sum())} "
+                   f"of {len(s)}")
     if len(rho):
-        out.append(f"abs rho of size against position: mean {rho.mean():.2f}, median {np.median(rho):.2f}")
+        out.append(f"abs rho of size against position: mean {rho.mean():.2f}, "
+                   f"median {np.median(rho):.2f}")
     return out
 
 
@@ -136,14 +142,16 @@ def spread(records: list) -> list[str]:
             cells.append(fmt(k, d))
         rows.append(f"| {name} | {len(rs)} | " + " | ".join(cells) + " |")
     rows.append("median spread: " + ", ".join(
-        f"{k} {fmt(k, float(np.median(v)))}{'%' if k in PERCENT else ''}" for k, v in noise.items() if v))
+        f"{k} {fmt(k, float(np.median(v)))}{'%' if k in PERCENT else ''}"
+        for k, v in noise.items() if v))
     return rows
 
 
 def against(records: list, before: list) -> list[str]:
     """Per design, each measure before -> after (matched by id and seed)."""
     old = {(r["id"], r["seed"]): r for r in before}
-    out = ["| design | " + " | ".join(MEASURES) + " | badness |", "|---|" + "---|" * (len(MEASURES) + 1)]
+    out = ["| design | " + " | ".join(MEASURES) + " | badness |",
+           "|---|" + "---|" * (len(MEASURES) + 1)]
     for r in records:
         b = old.get((r["id"], r["seed"]))
         if b is None or "error" in r or "error" in b:
@@ -155,8 +163,10 @@ def against(records: list, before: list) -> list[str]:
                 cells.append("")
                 continue
             d = r[k] - b[k]
-            cells.append(f"{fmt(k, b[k])} -> {fmt(k, r[k])} ({'+' if d >= 0 else '-'}{fmt(k, abs(d))})")
-        out.append(f"| {r['id']} | " + " | ".join(cells) + f" | {badness(b):.1f} -> {badness(r):.1f} |")
+            sign = "+" if d >= 0 else "-"
+            cells.append(f"{fmt(k, b[k])} -> {fmt(k, r[k])} ({sign}{fmt(k, abs(d))})")
+        out.append(f"| {r['id']} | " + " | ".join(cells)
+                   + f" | {badness(b):.1f} -> {badness(r):.1f} |")
     return out
 
 
@@ -169,8 +179,10 @@ def parse_seeds(text: str) -> list[int]:
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help=f"only the quick slice ({len(QUICK)} designs)")
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true",
+                    help=f"only the quick slice ({len(QUICK)} designs)")
     ap.add_argument("--seed", type=int, default=0, help="the corpus seed (which designs)")
     ap.add_argument("--n", type=int, default=120, help="designs in the corpus (default 120)")
     ap.add_argument("--only", nargs="*", help="design ids to run")
@@ -209,7 +221,8 @@ def main(argv=None):
     if a.save:
         meta = {"seed": a.seed, "n": a.n, "seeds": a.seeds, "quick": a.quick, "only": a.only,
                 "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="minutes"),
-                "machine": f"{platform.machine()}, {os.cpu_count()} cores", "python": platform.python_version()}
+                "machine": f"{platform.machine()}, {os.cpu_count()} cores",
+                "python": platform.python_version()}
         with open(a.save, "w") as f:
             json.dump({"meta": meta, "designs": [{k: v for k, v in r.items() if k != "traceback"}
                                                  for r in records]}, f, indent=1)

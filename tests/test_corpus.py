@@ -97,9 +97,11 @@ def test_strata_are_in_order_when_the_upper_layer_rests_on_the_lower_and_not_whe
 @pytest.mark.corpus
 @pytest.mark.parametrize("spec", SLICE, ids=[s.id for s in SLICE])
 def test_the_quick_slice_stays_within_the_bounds_of_todays_engine(spec, tmp_path):
-    """Bounds a sound engine meets on every design of the slice (RESULTS.md has today's
-    numbers): no error, little overlap and ink outside, closed containers mostly covered,
-    strata mostly in order, an open fill far below its ask only with a warning."""
+    """Bounds a sound engine meets on every design of the slice: no error, little overlap
+    and ink outside, closed containers mostly covered, strata mostly in order, an open fill
+    far below its ask only with a warning. Today's worst over layout seeds 0-4
+    (benchmarks/corpus-quick-seeds.json): overlap 0.49%, outside 0.59%, empty 16.7%, strata
+    0.80, fill 0.44 of the ask with no warning, 4.6 s; the bounds leave that much again."""
     r = run.run(spec, str(tmp_path))
     assert "error" not in r, r.get("traceback")
     assert r["overlap"] <= 0.01 and r["outside"] <= 0.01, r
@@ -108,7 +110,7 @@ def test_the_quick_slice_stays_within_the_bounds_of_todays_engine(spec, tmp_path
     if r["fill"] is not None and not r["warnings"]:
         assert r["fill"] >= 0.3 * r["fill_asked"], r
     if r["strata"] is not None:
-        assert r["strata"] >= 0.8, r
+        assert r["strata"] >= 0.7, r
     assert r["seconds"] <= 60, r
 
 

@@ -108,7 +108,8 @@ def emitter_for(kind: str, container, rng):
     if kind == "grid":
         return uw.GridEmitter(direction=None if rng.random() < 0.5 else 90.0)
     if kind == "curve":
-        return uw.CurveEmitter(top_curve(container, rng), mode=str(rng.choice(["free", "line", "band"])))
+        mode = str(rng.choice(["free", "line", "band"]))
+        return uw.CurveEmitter(top_curve(container, rng), mode=mode)
     return None
 
 
@@ -203,7 +204,8 @@ def kind_capped_scale(rng, folder, layout_seed) -> Built:
     v = rng.lognormal(0, 0.3, n)
     v[int(rng.integers(n))] = 40.0 * float(np.median(v))
     label, container = shapes.blob(rng, folder)
-    chart = uw.Chart(pd.DataFrame({"v": v}), mark=uw.Mark.svg(marks.ROOT + "/benchmarks/data/strand.svg"),
+    strand = uw.Mark.svg(marks.ROOT + "/benchmarks/data/strand.svg")
+    chart = uw.Chart(pd.DataFrame({"v": v}), mark=strand,
                      height="v", rotate=True, container=container, canvas=(W, H),
                      seed=layout_seed, legend=False)
     return Built(chart, {"layer-1": container}, dict(container=label, mark="thin:strand",
@@ -220,7 +222,8 @@ def kind_slope(rng, folder, layout_seed) -> Built:
                      boundary="open", forces=[uw.DirectionalForce(90)], canvas=(W, H),
                      seed=layout_seed, legend=False)
     chart.layer("0").set(emitter=uw.CurveEmitter([(40, 40), (100, 30), (160, 30), (200, 40)]))
-    chart.layer("1").set(emitter=uw.CurveEmitter([(280, 40), (320, 30), (380, 30), (440, 40)]), blocks=["0"])
+    chart.layer("1").set(emitter=uw.CurveEmitter([(280, 40), (320, 30), (380, 30), (440, 40)]),
+                         blocks=["0"])
     return Built(chart, {"0": container, "1": container},
                  dict(container=label, mark="shape:star", force="directional", layers=2,
                       n=2 * n, boundary="open"))

@@ -15,7 +15,8 @@ from PIL import Image, ImageDraw
 import unitopia_widget as uw
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-STYLED = [os.path.join(ROOT, "benchmarks", "data", n + ".svg") for n in ("flower", "raindrop", "bag")]
+STYLED = [os.path.join(ROOT, "benchmarks", "data", n + ".svg")
+          for n in ("flower", "raindrop", "bag")]
 STYLED += [os.path.join(ROOT, "notebooks", "data", n + ".svg")
            for n in ("daisy", "leaf", "tulip", "cornflower", "bubble", "pin")]
 SHAPES = ["circle", "star", "square", "triangle", "heart", "drop", "hexagon", "diamond", "cross"]
@@ -42,7 +43,8 @@ def png(rng, folder):
     palette with a transparent index, RGB on a white background, or RGBA fully opaque."""
     mode = ["RGBA", "LA", "P", "RGB", "RGBA-opaque"][int(rng.integers(5))]
     side = int(rng.integers(48, 97))
-    img = Image.new("RGBA", (side, side), (255, 255, 255, 0 if mode in ("RGBA", "LA", "P") else 255))
+    clear = mode in ("RGBA", "LA", "P")
+    img = Image.new("RGBA", (side, side), (255, 255, 255, 0 if clear else 255))
     draw = ImageDraw.Draw(img)
     colour = tuple(int(c) for c in rng.integers(20, 200, 3)) + (255,)
     k = int(rng.integers(3, 7))
@@ -121,8 +123,9 @@ def spiky(rng, folder):
         return "spiky:snowflake", uw.Mark.svg(os.path.join(ROOT, "benchmarks", "data",
                                                            "snowflake.svg")), False
     k = int(rng.integers(1, 4))
+    colours = ["#4e79a7", "#76b7b2", "#59a14f"]
     marks = [flake(int(rng.integers(5, 13)), float(rng.uniform(0.35, 0.75)),
-                   float(rng.uniform(4, 8)), ["#4e79a7", "#76b7b2", "#59a14f"][i]) for i in range(k)]
+                   float(rng.uniform(4, 8)), colours[i]) for i in range(k)]
     return f"spiky:flakes{k}", marks if k > 1 else marks[0], False
 
 

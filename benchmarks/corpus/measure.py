@@ -85,7 +85,8 @@ def ink_measures(svg: str, canvas, containers: dict, closed: set, fills: dict, k
         outside += n - float((part & masks[key][1][rs, cs]).sum())
         solid[key][rs, cs] |= filled(part)
     total = max(total, 1.0)
-    out = {"units": len(areas), "ink_px": total, "overlap": float(np.maximum(count - 1, 0).sum()) / total,
+    out = {"units": len(areas), "ink_px": total,
+           "overlap": float(np.maximum(count - 1, 0).sum()) / total,
            "outside": outside / total, "empty": None, "fill": []}
     closed_keys = {id(containers[n]) for n in closed}
     if closed_keys and areas:

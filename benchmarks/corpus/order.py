@@ -39,8 +39,8 @@ def _beyond_directional(lower, upper, angle_deg) -> np.ndarray:
     lu, ld = lxy @ across, lxy @ down
     uu, ud = uxy @ across, uxy @ down
     gap = np.abs(uu[:, None] - lu[None, :])                       # (n_upper, n_lower)
-    top = np.where(gap < lr[None, :], ld[None, :] - np.sqrt(np.maximum(lr[None, :] ** 2 - gap ** 2, 0)),
-                   np.inf).min(axis=1)
+    rise = np.sqrt(np.maximum(lr[None, :] ** 2 - gap ** 2, 0))
+    top = np.where(gap < lr[None, :], ld[None, :] - rise, np.inf).min(axis=1)
     return ud <= top
 
 
@@ -60,7 +60,8 @@ def _beyond_points(lower, upper, points) -> np.ndarray:
         along = unit @ low.T                                        # (n_u, n_low)
         side = np.abs(unit[:, 0:1] * low[None, :, 1] - unit[:, 1:2] * low[None, :, 0])
         r = lr[lnear == j][None, :]
-        reach = np.where((side < r) & (along > -r), along + np.sqrt(np.maximum(r ** 2 - side ** 2, 0)), 0)
+        rise = np.sqrt(np.maximum(r ** 2 - side ** 2, 0))
+        reach = np.where((side < r) & (along > -r), along + rise, 0)
         out[near == j] = dist_u >= reach.max(axis=1)
     return out
 
@@ -82,7 +83,8 @@ def strata_in_order(table, layers) -> float | None:
                                                 sum(f.vector[0] for f in pushes)))
                 shares.append(float(_beyond_directional(lower, upper, angle).mean()))
             else:
-                shares.append(float(_beyond_points(lower, upper, np.array([[f.x, f.y] for f in points])).mean()))
+                centres = np.array([[f.x, f.y] for f in points])
+                shares.append(float(_beyond_points(lower, upper, centres).mean()))
     return float(np.mean(shares)) if shares else None
 
 

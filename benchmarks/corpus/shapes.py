@@ -30,7 +30,8 @@ def ring_path(points) -> str:
 
 
 def blob(rng, folder):
-    pts = wobbly(W / 2, H / 2, rng.uniform(150, 220), rng.uniform(110, 160), rng.uniform(0.03, 0.12), rng)
+    rx, ry = rng.uniform(150, 220), rng.uniform(110, 160)
+    pts = wobbly(W / 2, H / 2, rx, ry, rng.uniform(0.03, 0.12), rng)
     return "blob", uw.Container.polygon(pts)
 
 

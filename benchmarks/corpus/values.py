@@ -34,6 +34,7 @@ def with_rows(values: np.ndarray, rows: str, rng) -> np.ndarray:
         return np.sort(values)[::-1]
     if rows == "nan":
         out = values.copy()
-        out[rng.choice(len(out), max(1, int(len(out) * rng.uniform(0.05, 0.1))), replace=False)] = np.nan
+        missing = max(1, int(len(out) * rng.uniform(0.05, 0.1)))
+        out[rng.choice(len(out), missing, replace=False)] = np.nan
         return out
     return values
