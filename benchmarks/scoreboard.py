@@ -7,9 +7,11 @@
 Per design (``corpus/generate.py`` draws them from ``--seed``): overlap and ink outside
 (% of the ink, from the SVG), empty share (% of the closed containers farther than one
 median mark radius from any ink), fill reached / asked (open containers; the one furthest
-below its ask), strata in order (share of the blocked layers' marks beyond the layer they
-rest on), |rho| of mark area against position (distance from the force point, depth
-along a directional force, or distance from the container's centre), pull (how far the
+below its ask), join (the largest mark that splits its container into large pieces, as a
+multiple of the median mark: a mark across a narrow join; 0 when none), strata in order
+(share of the blocked layers' marks beyond the layer they rest on), |rho| of mark area
+against position (distance from the force point, depth along a directional force, or
+distance from the container's centre), pull (how far the
 forces gathered the marks: 1 against the far wall or at the point), layout seconds and
 the number of warnings. Then the totals and the ten worst designs by ``badness`` (each
 term is 1 at the issue's bound: 1% overlap, 0.5% outside, 10% empty beyond 10%, 20% of
@@ -37,7 +39,7 @@ from corpus import generate, run  # noqa: E402
 
 QUICK = ("k2-thin-push", "k5-twins", "m001", "m005", "m007", "m011", "m017", "m019", "m038", "m043",
          "m044", "m046", "m047", "m048", "m053")
-MEASURES = ("overlap", "outside", "empty", "fill", "strata", "rho", "pull", "seconds")
+MEASURES = ("overlap", "outside", "empty", "fill", "join", "strata", "rho", "pull", "seconds")
 PERCENT = {"overlap", "outside", "empty", "fill"}
 
 
@@ -69,22 +71,23 @@ def fmt(name: str, v) -> str:
 
 
 HEADER = ("| design | container | mark | data | force | L | bnd | n | overlap % | outside % | "
-          "empty % | fill % / asked | strata | abs rho | pull | s | warn |")
+          "empty % | fill % / asked | join x | strata | abs rho | pull | s | warn |")
 
 
-RULE = "|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+RULE = "|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 
 
 def line(r: dict) -> str:
     if "error" in r:
-        return f"| {r['id']} | failed: {r['error'][:120]} |" + " |" * 15
+        return f"| {r['id']} | failed: {r['error'][:120]} |" + " |" * 16
     t = r["tags"]
     fill = "" if r["fill"] is None else f"{100 * r['fill']:.0f} / {100 * r['fill_asked']:.0f}"
     return (f"| {r['id']} | {t.get('container', '')} | {t.get('mark', '')} | {t.get('data', '')} | "
             f"{t.get('force', '')} | {t.get('layers', 1)} | {t.get('boundary', '')} | "
             f"{r['units']} | "
             f"{fmt('overlap', r['overlap'])} | {fmt('outside', r['outside'])} | "
-            f"{fmt('empty', r['empty'])} | {fill} | {fmt('strata', r['strata'])} | "
+            f"{fmt('empty', r['empty'])} | {fill} | {fmt('join', r.get('join'))} | "
+            f"{fmt('strata', r['strata'])} | "
             f"{fmt('rho', r['rho'])} | {fmt('pull', r['pull'])} | {fmt('seconds', r['seconds'])} | "
             f"{len(r['warnings'])} |")
 
@@ -108,6 +111,9 @@ def totals(records: list) -> list[str]:
     out.append(f"fill (open): reached / asked median {reached:.2f}; "
                f"under 80% of the ask: {len(short)} of {len(opened)} "
                f"({sum(1 for r in short if not r['warnings'])} with no warning)")
+    joined = [r["id"] for r in ok if (r.get("join") or 0) >= 2]
+    out.append(f"a mark of at least 2 median marks across a narrow join: {len(joined)} designs "
+               f"({', '.join(joined[:8])}{', ...' if len(joined) > 8 else ''})")
     s, rho = col("strata"), col("rho")
     if len(s):
         out.append(f"strata in order: mean {s.mean():.2f}, under 0.9: {int((s < 0.9).sum())} "
@@ -135,7 +141,7 @@ def spread(records: list) -> list[str]:
     for name, rs in by_id.items():
         cells = []
         for k in MEASURES:
-            v = [r[k] for r in rs if r[k] is not None]
+            v = [r[k] for r in rs if r.get(k) is not None]
             d = max(v) - min(v) if len(v) > 1 else None
             if d is not None:
                 noise[k].append(d)
@@ -159,7 +165,7 @@ def against(records: list, before: list) -> list[str]:
             continue
         cells = []
         for k in MEASURES:
-            if r[k] is None or b[k] is None:
+            if r.get(k) is None or b.get(k) is None:
                 cells.append("")
                 continue
             d = r[k] - b[k]

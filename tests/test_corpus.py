@@ -14,7 +14,7 @@ import unitopia_widget as uw
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "benchmarks"))
 import scoreboard  # noqa: E402
-from corpus import generate, measure, order, run  # noqa: E402
+from corpus import generate, joins, measure, order, run  # noqa: E402
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 SLICE = scoreboard.quick_slice(generate.corpus(0, 120))
@@ -77,6 +77,17 @@ def test_marks_pushed_out_of_their_container_are_caught_as_ink_outside(laid_out)
     finally:
         chart.placements = kept
     assert m["outside"] > 0.3
+
+
+def test_a_mark_across_the_join_of_two_heads_splits_them_and_one_inside_a_head_does_not():
+    y, x = np.mgrid[0:100, 0:200] + 0.5
+    heads = (np.hypot(x - 55, y - 50) <= 45) | (np.hypot(x - 145, y - 50) <= 45)   # touch at x=100
+    pieces = joins.large_pieces(heads, float(heads.sum()))
+    across = np.hypot(x[35:65, 85:115] - 100, y[35:65, 85:115] - 50) <= 15
+    inside = np.hypot(x[35:65, 40:70] - 55, y[35:65, 40:70] - 50) <= 15
+    assert pieces == 1
+    assert joins.splits(heads, across, slice(35, 65), slice(85, 115), pieces)
+    assert not joins.splits(heads, inside, slice(35, 65), slice(40, 70), pieces)
 
 
 def strata_table(lower_y: float, upper_y: float) -> pd.DataFrame:

@@ -6,7 +6,9 @@ pixel is a unit's ink where its alpha > 0.5; its silhouette is the ink with encl
 filled. ``ink_measures`` returns shares of all ink (``overlap``: ink drawn over other ink;
 ``outside``: ink beyond its own layer's container or the canvas), ``empty`` (share of the
 closed containers farther than one median mark radius from any ink, as the independent
-checker counts it) and ``fill`` (per open container: the share its marks' silhouettes cover).
+checker counts it), ``fill`` (per open container: the share its marks' silhouettes cover)
+and ``join`` (the largest mark across a narrow join of its container, ``joins.py``, as a
+multiple of the median mark's silhouette; 0 when none is).
 """
 from __future__ import annotations
 
@@ -18,6 +20,7 @@ import numpy as np
 from scipy import ndimage
 
 from unitopia_widget.io.svgsafe import SVG_NS
+from . import joins
 from unitopia_widget.output.export import png_array
 
 _NUM = r"(-?[0-9.]+(?:e-?[0-9]+)?)"
@@ -62,14 +65,17 @@ def ink_measures(svg: str, canvas, containers: dict, closed: set, fills: dict, k
     """Measure ``svg``; ``containers``: layer name -> uw.Container; ``closed``: names of
     closed layers; ``fills``: open layer name -> asked fill. Returns ``overlap``,
     ``outside``, ``empty`` (None when no layer is closed), ``fill`` (a list of
-    ``(reached, asked)``, one per open container), ``units`` and ``ink_px``."""
+    ``(reached, asked)``, one per open container), ``join``, ``units`` and ``ink_px``."""
     w, h = int(round(canvas[0])), int(round(canvas[1]))
-    masks = {}
+    masks, coarse_masks = {}, {}
     for name, c in containers.items():
         masks.setdefault(id(c), (c, np.asarray(c.coverage((w, h), float(k))) >= 0.5))
+        if id(c) not in coarse_masks:
+            m = np.asarray(c.coverage((w, h), 1.0)) >= 0.5
+            coarse_masks[id(c)] = (m, joins.large_pieces(m, float(m.sum())))
     count = np.zeros((h * k, w * k), np.int32)
     solid = {key: np.zeros((h * k, w * k), bool) for key in masks}
-    outside, total, areas = 0.0, 0.0, []
+    outside, total, areas, silhouettes, across = 0.0, 0.0, [], [], []
     for layer, _, x0, y0, ink in unit_crops(svg, k):
         n = float(ink.sum())
         total += n
@@ -83,11 +89,18 @@ def ink_measures(svg: str, canvas, containers: dict, closed: set, fills: dict, k
         count[rs, cs] += part
         key = id(containers[layer])
         outside += n - float((part & masks[key][1][rs, cs]).sum())
-        solid[key][rs, cs] |= filled(part)
+        sil = filled(part)
+        solid[key][rs, cs] |= sil
+        silhouettes.append(float(sil.sum()))
+        mask1, pieces = coarse_masks[key]
+        rows, cols = slice(rs.start // k, rs.stop // k), slice(cs.start // k, cs.stop // k)
+        if sil.any() and joins.splits(mask1, joins.coarse(sil, k), rows, cols, pieces):
+            across.append(silhouettes[-1])
     total = max(total, 1.0)
     out = {"units": len(areas), "ink_px": total,
            "overlap": float(np.maximum(count - 1, 0).sum()) / total,
-           "outside": outside / total, "empty": None, "fill": []}
+           "outside": outside / total, "empty": None, "fill": [],
+           "join": max(across, default=0.0) / max(float(np.median(silhouettes or [1.0])), 1.0)}
     closed_keys = {id(containers[n]) for n in closed}
     if closed_keys and areas:
         region = np.logical_or.reduce([masks[key][1] for key in closed_keys])

@@ -43,7 +43,7 @@ def run(spec: generate.Spec, folder: str, seed: int = 0, png: str | None = None)
                                    closed, asked_fills(layers, built.containers))
         fill = min(ink["fill"], key=lambda rs: rs[0] / rs[1]) if ink["fill"] else (None, None)
         record.update(units=ink["units"], overlap=ink["overlap"], outside=ink["outside"],
-                      empty=ink["empty"], fill=fill[0], fill_asked=fill[1],
+                      empty=ink["empty"], fill=fill[0], fill_asked=fill[1], join=ink["join"],
                       strata=order.strata_in_order(chart.placements, layers),
                       rho=order.size_rho(chart.placements, layers, chart.canvas),
                       pull=order.pull(chart.placements, layers, chart.canvas))
