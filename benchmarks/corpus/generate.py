@@ -10,7 +10,6 @@ laid out), each layer's container, and the design's tags.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 import pandas as pd
@@ -158,11 +157,11 @@ def mixed(axes: dict, rng, folder: str, layout_seed: int) -> Built:
     return Built(chart, {layer.name: container for layer in chart.layers}, tags)
 
 
-def _stratified(df, layers, rng, container, boundary, fill, forces, layout_seed, **kw) -> uw.Chart:
+def _stratified(df, layers, container, boundary, fill, forces, layout_seed) -> uw.Chart:
     """A chart of ``len(layers)`` layers (one mark each) chained by blocks, coloured by layer."""
     chart = uw.Chart(df, mark={i: m for i, m in enumerate(layers)}, shape="layer", by="layer",
                      color="layer", size="v", container=container, boundary=boundary, fill=fill,
-                     forces=forces, canvas=(W, H), seed=layout_seed, legend=False, **kw)
+                     forces=forces, canvas=(W, H), seed=layout_seed, legend=False)
     for j in range(1, len(layers)):
         chart.layer(str(j)).set(blocks=[str(j - 1)])
     return chart
@@ -177,7 +176,7 @@ def kind_band_strata(rng, folder, layout_seed) -> Built:
     label, container = shapes.band(rng, folder, len(k), 0.7)
     x, y, w, h = container.bbox((W, H))
     point = uw.PointForce(W / 2, y + h * 0.55)
-    chart = _stratified(df, ["star", uw.Mark.svg(marks.STYLED[0]), marks._sun(rng)], rng, container,
+    chart = _stratified(df, ["star", uw.Mark.svg(marks.STYLED[0]), marks.sun(rng)], container,
                         "open", 0.7, [point], layout_seed)
     return Built(chart, {layer.name: container for layer in chart.layers},
                  dict(container=label, mark="star/flower/sun", force="point", layers=3, n=len(k),

@@ -65,7 +65,8 @@ def png(rng, folder):
     return "png:" + mode, uw.Mark.image(path), False
 
 
-def _sun(rng):
+def sun(rng) -> uw.Mark:
+    """An outlined sun with 6 to 10 rays, sketched."""
     t = np.linspace(0, 2 * math.pi, 40)
     rays = [np.array([[50 + 24 * math.cos(a), 50 + 24 * math.sin(a)],
                       [50 + 40 * math.cos(a), 50 + 40 * math.sin(a)]])
@@ -77,7 +78,7 @@ def sketch(rng, folder):
     """A line-drawn sketch: an outlined sun with rays, a zigzag or a spiral."""
     kind = ["sun", "zigzag", "spiral"][int(rng.integers(3))]
     if kind == "sun":
-        return "sketch:sun", _sun(rng), False
+        return "sketch:sun", sun(rng), False
     if kind == "zigzag":
         pts = np.c_[np.linspace(0, 60, 7), np.tile([0, 30], 4)[:7]]
         return "sketch:zigzag", uw.Mark.sketch([pts], width=5), False

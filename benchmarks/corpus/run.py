@@ -34,7 +34,7 @@ def run(spec: generate.Spec, folder: str, seed: int = 0, png: str | None = None)
             t0 = time.perf_counter()
             chart.layout()
             record["seconds"] = time.perf_counter() - t0
-        record["tags"] = {k: v for k, v in built.tags.items()}
+        record["tags"] = dict(built.tags)
         record["warnings"] = [str(w.message)[:300] for w in caught
                               if not str(w.message).startswith("dropna=True")]
         layers = chart.layers
