@@ -111,7 +111,7 @@ def totals(records: list) -> list[str]:
     out.append(f"fill (open): reached / asked median {reached:.2f}; "
                f"under 80% of the ask: {len(short)} of {len(opened)} "
                f"({sum(1 for r in short if not r['warnings'])} with no warning)")
-    joined = [r["id"] for r in ok if (r.get("join") or 0) >= 2]
+    joined = list(dict.fromkeys(r["id"] for r in ok if (r.get("join") or 0) >= 2))
     out.append(f"a mark of at least 2 median marks across a narrow join: {len(joined)} designs "
                f"({', '.join(joined[:8])}{', ...' if len(joined) > 8 else ''})")
     s, rho = col("strata"), col("rho")
