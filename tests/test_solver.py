@@ -262,23 +262,47 @@ def test_the_settle_counts_a_loss_no_better_by_a_thousandth_of_its_size_as_no_im
     assert s.best == sign * 1.0 - 5e-3
 
 
+def _settling_pile(n):
+    """A pile of ``n`` marks under a downward pull, as ``Rest`` and ``StartPolish`` see it,
+    at the start of a window; no mark touches another at the samples. ``window(s, dy)``
+    moves them down by ``dy(k)`` ``(n,)`` radii at each iteration ``k`` of a window."""
+    now = torch.zeros(n, 2)
+    p = SimpleNamespace(max_iterations=600, layer=np.zeros(n, int), terms=SimpleNamespace(
+        unit_overlap=lambda values, index, owner, layer, n: torch.zeros(n)))
+    s = SimpleNamespace(p=p, steps=Steps(), place=SimpleNamespace(transforms=lambda: (now, None), t=now),
+                        optimizer=SimpleNamespace(state={}), values=torch.zeros(1), index=None,
+                        owner=None, stage=np.zeros(n, int), poured=0, window_start=now.clone(),
+                        path=None, last_center=None, force_layers=[([0], [uw.DirectionalForce(90)])],
+                        radius=1.0, travelling=False, straggling=False, calm=True, moving=None,
+                        since_best=12, iteration=96, phase="settle",
+                        ctl=SimpleNamespace(log=np.zeros(1), free=np.ones(1, bool)))
+    Rest()(s)                             # the window before: nothing moved
+    return s
+
+
+def _window(s, dy):
+    now = s.place.transforms()[0]
+    for k in range(s.steps.patience):
+        s.iteration += 1
+        now[:, 1] += dy(k)
+        Rest()(s)
+
+
+def _jitter(n, net):
+    """``dy(k)``: every mark jitters up and down, ``net`` radii off after a window, along a
+    path of about one radius."""
+    return lambda k: torch.full((n,), 0.1 if k % 2 == 0 else -0.1 + net / 6)
+
+
 def test_the_settle_under_forces_goes_on_while_one_mark_still_falls():
     # a pile's loss is noisy: it stalled for a patience window while the pile's last marks
     # still fell, at rest on average and by its tenth, and they were left hanging mid-air;
     # a large pile's jitter throws a different mark that far each window, and is at rest
-    n = 40
-    now = torch.zeros(n, 2)
-    s = SimpleNamespace(p=SimpleNamespace(max_iterations=600), steps=Steps(), place=SimpleNamespace(transforms=lambda: (now, None)),
-                        stage=np.zeros(n, int), poured=0, window_start=now.clone(),
-                        force_layers=[([0], [uw.DirectionalForce(90)])], radius=1.0,
-                        travelling=False, straggling=False, calm=True, moving=None,
-                        since_best=12, iteration=100, phase="settle",
-                        ctl=SimpleNamespace(log=np.zeros(1), free=np.ones(1, bool)))
+    s = _settling_pile(40)
 
-    def window(far):                      # every mark drifts 0.2 radii, mark `far` 1.2
-        now[:, 1] += 0.2
-        now[far, 1] += 1.0
-        Rest()(s)
+    def window(far):                      # every mark jitters to 0.2 radii off, mark `far` 1.2
+        jitter = _jitter(40, 0.2)
+        _window(s, lambda k: jitter(k) + torch.eye(40)[far] / 12)
         assert not s.travelling and not s.straggling
 
     window(0)
@@ -286,3 +310,24 @@ def test_the_settle_under_forces_goes_on_while_one_mark_still_falls():
     assert not s.calm and not StartPolish()(s) and s.phase == "settle"
     window(1)                             # mark 0 rests, mark 1 jumps once: jitter
     assert s.calm and StartPolish()(s) and s.phase == "polish"
+
+
+def test_a_mark_falling_at_small_steps_keeps_the_settle_going_and_its_moments_are_forgotten():
+    # a crowded pile below keeps the steps small, and the second moment of an earlier
+    # collision smaller still: an untouched mark that goes straight on falls however slowly
+    s = _settling_pile(40)
+    s.optimizer.state[s.place.t] = {"exp_avg": torch.ones(40, 2), "exp_avg_sq": torch.ones(40, 2)}
+    jitter = _jitter(40, 0.1)
+    slow = torch.eye(40)[5]               # mark 5 goes 0.3 radii straight down in a window,
+    dy = lambda k: jitter(k) * (1 - slow) + 0.3 / 12 * slow   # noqa: E731  (gain-1 steps: 0.48)
+    _window(s, dy)
+    _window(s, dy)
+    assert not s.calm and not StartPolish()(s) and s.phase == "settle"
+    state = s.optimizer.state[s.place.t]
+    assert float(state["exp_avg_sq"][5].abs().sum()) == 0.0        # it falls at full pace
+    assert float(state["exp_avg_sq"][[0, 6]].min()) == 1.0          # the jittering pile keeps its moments
+    # the same, but the mark touches the pile: it rests on it, pressed slowly down with it
+    s.p.terms.unit_overlap = lambda values, index, owner, layer, n: torch.ones(n)
+    _window(s, dy)
+    _window(s, dy)
+    assert s.calm and StartPolish()(s)

@@ -38,7 +38,7 @@ SCHEDULE = (
     Relocate(),      # settle, each window: jammed marks jump into holes
     Uncross(),       # settle, each window: crossing thin marks turn side by side
     Resurface(),     # settle, each window: buried marks lifted back onto their stratum
-    Rest(),          # settle, each window: marks at rest, the pull weakens
+    Rest(),          # settle, each window (paths every iteration): marks at rest, none falling; the pull weakens
     Pour(),          # settle, each window: the next held-back stage released
     StartPolish(),   # settle, every iteration: the settle ends, scales shrink and freeze
     Decay(),         # polish, every iteration: the steps decay to nothing

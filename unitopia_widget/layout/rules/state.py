@@ -55,6 +55,8 @@ class State:
     straggling: bool = False       # a tenth of the marks still travel, though most rest
     calm: bool = False             # no mark travelled settle_motion mean radii two windows running
     moving: torch.Tensor | None = None   # (N,) bool, marks that travelled that far last window
+    path: torch.Tensor | None = None     # (N,) px each unit's centre went this window, step by step
+    last_center: torch.Tensor | None = None  # (N, 2) centres at the last settle iteration (for path)
     poured: int = 0                # the last stage poured
     poured_at: int = 0
     grow_outside: np.ndarray | None = None   # (G,) outside share below which room grows a scale
