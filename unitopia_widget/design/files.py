@@ -21,12 +21,15 @@ def design_code(design: dict, factory: str, df_name: str = "df", var: str = "cha
 
 def read_json(path, what: str = "design"):
     """The JSON value in the file at ``path``; a file that is not JSON raises ValueError
-    naming it as the ``what`` file."""
+    naming it as the ``what`` file, one that cannot be read an OSError naming it."""
     try:
         with open(path, encoding="utf-8") as f:
             return json.load(f)
     except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
         raise ValueError(f"{what} file {os.fspath(path)!r} is not valid JSON: {e}") from None
+    except OSError as e:   # a folder, /proc/self/mem, a vanished disk: name the path given
+        raise type(e)(e.errno, f"cannot read the {what} file {os.fspath(path)!r}: "
+                               f"{e.strerror or e}") from None
 
 
 def load_design(path) -> dict:

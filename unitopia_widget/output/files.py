@@ -9,9 +9,18 @@ import tempfile
 def atomic_write(path: str, data: bytes) -> None:
     """Write a temporary file beside ``path``, then rename it over ``path``.
 
-    The file gets the permissions a plain ``open(path, "w")`` would (0666
-    less the umask), not mkstemp's private 0600."""
-    folder = os.path.dirname(os.path.abspath(path))
+    A symbolic link at ``path`` keeps its link: the file it points to is the one
+    replaced. The file gets the permissions a plain ``open(path, "w")`` would (0666
+    less the umask), not mkstemp's private 0600. An OSError (a missing folder, a
+    read-only disk) names ``path``, not the temporary file."""
+    try:
+        _replace(os.path.realpath(path), data)
+    except OSError as e:
+        raise type(e)(e.errno, f"cannot write {os.fspath(path)!r}: {e.strerror}") from None
+
+
+def _replace(path: str, data: bytes) -> None:
+    folder = os.path.dirname(path)
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=".unitopia-", suffix=".tmp")
     umask = os.umask(0)
     os.umask(umask)
