@@ -5,6 +5,8 @@ import json
 import os
 import tempfile
 
+from ..design.files import naming
+
 
 def atomic_write(path: str, data: bytes) -> None:
     """Write a temporary file beside ``path``, then rename it over ``path``.
@@ -14,9 +16,9 @@ def atomic_write(path: str, data: bytes) -> None:
     less the umask), not mkstemp's private 0600. An OSError (a missing folder, a
     read-only disk) names ``path``, not the temporary file."""
     try:
-        _replace(os.path.realpath(path), data)
+        _replace(os.path.realpath(path) if os.path.islink(path) else path, data)
     except OSError as e:
-        raise type(e)(e.errno, f"cannot write {os.fspath(path)!r}: {e.strerror}") from None
+        raise naming(e, f"cannot write {os.fspath(path)!r}") from None
 
 
 def _replace(path: str, data: bytes) -> None:
