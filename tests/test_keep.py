@@ -88,3 +88,36 @@ def test_a_symlinked_design_file_keeps_its_link_and_its_target_gets_the_edits(df
     assert link.is_symlink() and link.resolve() == target
     assert json.loads(target.read_text())["caption"] == "kept through the link"
     assert not list(tmp_path.glob(".unitopia-*")) and not list(target.parent.glob(".unitopia-*"))
+
+
+def test_two_widgets_on_one_design_path_do_not_overwrite_each_others_edits(df, tmp_path):
+    path = tmp_path / "shared.unitopia.json"
+    a = uw.UnitoPia(df, design_path=path)
+    b = uw.UnitoPia(df, design_path=path)        # reads a's file, writes the same design
+    a.layer(0).set(boundary="open", forces=[uw.PointForce(400, 450)])
+    with pytest.warns(RuntimeWarning, match=f"design file {str(path)!r} changed since this "
+                                            r"widget last read or wrote it.*"
+                                            r"w.save_design\(force=True\).*UnitoPia.load"):
+        b.caption = "x"
+    kept = json.loads(path.read_text())
+    assert kept["layers"][0]["forces"] == [{"kind": "point", "x": 400.0, "y": 450.0,
+                                            "strength": 1.0}] and kept["caption"] is None
+    with pytest.raises(RuntimeError, match="save_design\\(force=True\\)"):
+        b.save_design()
+    assert b.save_design(force=True) == path
+    assert json.loads(path.read_text())["caption"] == "x"
+    b.caption = "y"                               # b wrote last: its edits are written again
+    assert json.loads(path.read_text())["caption"] == "y"
+    reloaded = uw.UnitoPia.load(path, df)         # a takes the file's design instead
+    reloaded.caption = "z"
+    assert json.loads(path.read_text())["caption"] == "z"
+
+
+def test_a_file_rewritten_with_the_same_bytes_is_no_conflict(df, tmp_path):
+    path = tmp_path / "same.unitopia.json"
+    w = uw.UnitoPia(df, design_path=path)
+    data = path.read_bytes()
+    path.unlink()
+    path.write_bytes(data)                        # a new inode and time, the same design
+    w.caption = "still mine"
+    assert json.loads(path.read_text())["caption"] == "still mine"

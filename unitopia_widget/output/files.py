@@ -37,6 +37,9 @@ def _replace(path: str, data: bytes) -> None:
         raise
 
 
-def write_json(path, value) -> None:
-    """Write ``value`` (a design, a story) to ``path`` as indented JSON, whole or not at all."""
-    atomic_write(os.fspath(path), json.dumps(value, indent=1).encode())
+def write_json(path, value) -> bytes:
+    """Write ``value`` (a design, a story) to ``path`` as indented JSON, whole or not at all;
+    returns the bytes written."""
+    data = json.dumps(value, indent=1).encode()
+    atomic_write(os.fspath(path), data)
+    return data
