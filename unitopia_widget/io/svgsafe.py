@@ -20,6 +20,7 @@ from defusedxml.ElementTree import DefusedXMLParser
 from PIL import Image, ImageColor
 
 from .images import MAX_PIXELS, parse_data_url, probe_size
+from .svgcost import cap_filters
 
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
@@ -156,6 +157,7 @@ def parse_svg(text: str | bytes, _nested: int = 0) -> ET.Element:
 
     Raises ValueError for entity declarations, malformed XML, a root that is
     not ``svg``, or input over :data:`MAX_SVG_BYTES` / :data:`MAX_SVG_ELEMENTS`.
+    Costly filter primitives are capped, with a warning (``svgcost.cap_filters``).
     """
     if isinstance(text, (bytes, bytearray, memoryview)):
         data = bytes(text)
@@ -193,6 +195,7 @@ def parse_svg(text: str | bytes, _nested: int = 0) -> ET.Element:
                 continue
             _clean_element(child, _nested)
             stack.append(child)
+    cap_filters(root)
     return root
 
 
