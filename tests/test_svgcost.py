@@ -1,14 +1,19 @@
 """Marks cost what they look like (unitopia_widget/io/svgcost.py): costly filter primitives
 are capped relative to the view box, with a warning, so a tiny mark cannot hold the kernel."""
 import json
+import os
+import signal
+import subprocess
+import sys
 import time
 import warnings
+from pathlib import Path
 
 import pandas as pd
 import pytest
 
 import unitopia_widget as uw
-from unitopia_widget.io import svgcost
+from unitopia_widget.io import svgcost, svgsafe
 from unitopia_widget.io.svgsafe import parse_svg
 
 pytestmark = pytest.mark.usefixtures("one_thread")
@@ -85,3 +90,44 @@ def test_the_issues_filter_mark_is_drawn_within_10_s_from_a_design_file(tmp_path
         chart = uw.Chart.load(path, df)
     assert 'radius="0.25"' in chart.layer(0).mark.to_svg()
     assert time.perf_counter() - start < 10
+
+
+# a filter the view-box cap allows, on a group scaled 100 times: 25 px of radius at 1,024 px
+SCALED = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><filter id="f">'
+          '<feMorphology radius="0.25"/></filter><g transform="scale(100)">'
+          '<circle cx="0.5" cy="0.5" r="0.4" filter="url(#f)"/></g></svg>')
+
+
+def test_a_mark_past_its_render_budget_is_refused_naming_its_filter(monkeypatch):
+    monkeypatch.setattr(svgsafe, "RENDER_SECONDS", 1.0)
+    start = time.perf_counter()
+    with pytest.raises(ValueError, match=r"SVG could not be drawn at \d+ x \d+ px within "
+                                         r"1 s, so resvg was stopped \(its filter primitives: "
+                                         r"<feMorphology>\)"):
+        uw.Mark.from_spec(SCALED)
+    assert time.perf_counter() - start < 5
+    assert uw.Mark.from_spec("circle").silhouette(64).any()    # the next render starts afresh
+
+
+def test_ctrl_c_stops_a_hung_mark_render_within_a_second(tmp_path):
+    script = tmp_path / "hang.py"
+    script.write_text("import sys, unitopia_widget as uw\n"
+                      "from unitopia_widget.io import svgsafe\n"
+                      "svgsafe.RENDER_SECONDS = 600\n"
+                      "print('rendering', flush=True)\n"
+                      f"uw.Mark.from_spec({SCALED!r})\n")
+    env = {**os.environ, "PYTHONPATH": str(Path(uw.__file__).parent.parent)}
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, env=env, text=True)
+    try:
+        assert proc.stdout.readline() == "rendering\n"
+        time.sleep(3)                       # well inside resvg by now
+        assert proc.poll() is None
+        sent = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+        stopped = time.perf_counter() - sent
+    finally:
+        proc.kill()
+    assert "KeyboardInterrupt" in proc.stderr.read()
+    assert stopped < 1.0
