@@ -283,3 +283,32 @@ def test_non_string_bindings_are_type_errors():
         uw.Chart(df, size=3)
     with pytest.raises(TypeError, match=r"color must be a column name"):
         uw.Chart(df, color=(1, 2, 3))
+
+
+# --- columns checked at the door ------------------------------------------------------------
+@pytest.mark.parametrize("channel", ["size", "width", "height", "margin", "color", "order", "x"])
+def test_a_channel_bound_to_a_repeated_column_name_is_refused_naming_it(channel):
+    df = pd.DataFrame([[1.0, 2.0], [2.0, 3.0]], columns=["v", "v"])
+    with pytest.raises(ValueError, match=rf"{channel}='v': the DataFrame has 2 columns named 'v'"):
+        uw.Chart(df, **{channel: "v"})
+
+
+@pytest.mark.parametrize("channel", ["size", "width", "height", "margin", "x", "y"])
+def test_complex_numbers_are_refused_naming_the_channel_and_dtype(channel):
+    df = pd.DataFrame({"v": [1 + 5j, 2, 3]})
+    with pytest.raises(ValueError, match=rf"{channel}='v': the column must hold real numbers, "
+                                         r"got dtype complex128"):
+        uw.Chart(df, **{channel: "v"})
+
+
+@pytest.mark.parametrize("channel", ["size", "margin", "x", "y"])
+@pytest.mark.parametrize("values", [[1, "a", 2.0], [1.0, 2 + 1j, 3.0]], ids=["text", "complex"])
+def test_object_columns_mixing_numbers_with_other_values_are_refused(channel, values):
+    df = pd.DataFrame({"v": pd.Series(values, dtype=object)})
+    with pytest.raises(ValueError, match=rf"{channel}='v': the column \(dtype object\) mixes"):
+        uw.Chart(df, **{channel: "v"})
+
+
+def test_text_categories_still_place_on_x():
+    df = pd.DataFrame({"v": pd.Series(["a", "b", 3], dtype=object).astype(str)})
+    assert uw.Chart(df, x="v").layers

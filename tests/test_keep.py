@@ -2,6 +2,7 @@
 ``UnitoPia.load`` restore a sketch when the notebook is executed again."""
 import copy
 import json
+import os
 
 import pandas as pd
 import pytest
@@ -59,3 +60,64 @@ def test_save_design_defaults_to_a_file_named_after_the_notebook(df, tmp_path, m
     assert keep.default_path() == tmp_path / "analysis.unitopia.json"
     monkeypatch.delenv("JPY_SESSION_NAME")
     assert keep.default_path() == tmp_path / "design.unitopia.json"
+
+
+def test_a_design_path_in_a_missing_folder_is_refused_naming_that_path(df, tmp_path):
+    path = tmp_path / "no such folder" / "x.unitopia.json"
+    with pytest.raises(FileNotFoundError, match=f"cannot write {str(path)!r}") as caught:
+        uw.UnitoPia(df, design_path=path)
+    assert ".tmp" not in str(caught.value)
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/mem"), reason="needs Linux's /proc")
+def test_an_unreadable_design_path_is_named_in_the_error(df, tmp_path):
+    with pytest.raises(OSError, match="cannot read the design file '/proc/self/mem'"):
+        uw.UnitoPia(df, design_path="/proc/self/mem")
+    with pytest.raises(IsADirectoryError, match=f"cannot read the design file {str(tmp_path)!r}"):
+        uw.UnitoPia.load(tmp_path, df)
+
+
+def test_a_symlinked_design_file_keeps_its_link_and_its_target_gets_the_edits(df, tmp_path):
+    target = tmp_path / "shared" / "jar.unitopia.json"
+    target.parent.mkdir()
+    uw.UnitoPia(df).save_design(target)
+    link = tmp_path / "jar.unitopia.json"
+    link.symlink_to(target)
+    w = uw.UnitoPia(df, design_path=link)
+    w.caption = "kept through the link"
+    assert link.is_symlink() and link.resolve() == target
+    assert json.loads(target.read_text())["caption"] == "kept through the link"
+    assert not list(tmp_path.glob(".unitopia-*")) and not list(target.parent.glob(".unitopia-*"))
+
+
+def test_two_widgets_on_one_design_path_do_not_overwrite_each_others_edits(df, tmp_path):
+    path = tmp_path / "shared.unitopia.json"
+    a = uw.UnitoPia(df, design_path=path)
+    b = uw.UnitoPia(df, design_path=path)        # reads a's file, writes the same design
+    a.layer(0).set(boundary="open", forces=[uw.PointForce(400, 450)])
+    with pytest.warns(RuntimeWarning, match=f"design file {str(path)!r} changed since this "
+                                            r"widget last read or wrote it.*"
+                                            r"w.save_design\(force=True\).*UnitoPia.load"):
+        b.caption = "x"
+    kept = json.loads(path.read_text())
+    assert kept["layers"][0]["forces"] == [{"kind": "point", "x": 400.0, "y": 450.0,
+                                            "strength": 1.0}] and kept["caption"] is None
+    with pytest.raises(RuntimeError, match="save_design\\(force=True\\)"):
+        b.save_design()
+    assert b.save_design(force=True) == path
+    assert json.loads(path.read_text())["caption"] == "x"
+    b.caption = "y"                               # b wrote last: its edits are written again
+    assert json.loads(path.read_text())["caption"] == "y"
+    reloaded = uw.UnitoPia.load(path, df)         # a takes the file's design instead
+    reloaded.caption = "z"
+    assert json.loads(path.read_text())["caption"] == "z"
+
+
+def test_a_file_rewritten_with_the_same_bytes_is_no_conflict(df, tmp_path):
+    path = tmp_path / "same.unitopia.json"
+    w = uw.UnitoPia(df, design_path=path)
+    data = path.read_bytes()
+    path.unlink()
+    path.write_bytes(data)                        # a new inode and time, the same design
+    w.caption = "still mine"
+    assert json.loads(path.read_text())["caption"] == "still mine"

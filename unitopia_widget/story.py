@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from .chart import Chart
+from .design.bounds import MAX_SLIDES, check_length
 from .design.files import read_json
 from .output import animation, story_film, story_page, transition
 from .output.files import atomic_write, write_json
@@ -57,6 +58,7 @@ class Story:
             raise TypeError(f"slides must be a list of charts (uw.UnitoPia or uw.Chart), got "
                             f"{type(slides).__name__}")
         slides = list(slides)
+        check_length("slides", slides, MAX_SLIDES)
         if not slides:
             raise ValueError("slides is empty: a story needs at least one chart "
                              "(uw.UnitoPia or uw.Chart)")
@@ -184,6 +186,7 @@ class Story:
                 isinstance(s, dict) and isinstance(s.get("rows"), list) and "design" in s for s in slides):
             raise ValueError("story: \"slides\" must be a non-empty list of {\"title\", \"rows\", "
                              "\"design\"} objects")
+        check_length("story: slides", slides, MAX_SLIDES)
         if isinstance(df, (list, tuple)):
             if len(df) != len(slides):
                 raise ValueError(f"df is a list of {len(df)} DataFrames for a story of "

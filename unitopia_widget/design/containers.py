@@ -18,6 +18,7 @@ import numpy as np
 from PIL import Image
 
 from . import regions
+from .bounds import MAX_CONTAINER_POINTS, MAX_CUTS, MAX_PATH_CHARS, check_length
 from ..io.images import check_pixels, image_data_url, load_image
 from .validate import (check_box, check_canvas_size, check_coord, check_finite, check_points,
                        check_positive)
@@ -74,6 +75,7 @@ class Container:
     @classmethod
     def polygon(cls, points) -> "Container":
         """The polygon through ``points`` (k, 2), k >= 3, closed, filled even-odd."""
+        check_length("Container.polygon: points", points, MAX_CONTAINER_POINTS, "vertices")
         pts = check_points("Container.polygon", "points", points, 3)
         _check_area("Container.polygon", "points", [pts])
         return cls("polygon", {"points": pts.tolist()}, rings=[pts])
@@ -85,6 +87,7 @@ class Container:
         o = "Container.path"
         if not isinstance(d, str):
             raise TypeError(f"{o}: d must be a string of SVG path data, got {type(d).__name__}")
+        check_length(f"{o}: d", d, MAX_PATH_CHARS, "characters")
         if not d.strip():
             raise ValueError(f"{o}: d is empty; expected SVG path data such as 'M 0 0 H 100 V 80 Z'")
         try:
@@ -204,6 +207,8 @@ class Container:
         """A new container with the round-capped stroke along ``points`` (k, 2), k >= 1,
         ``width`` canvas px wide, removed. Cuts accumulate."""
         o = "Container.cut"
+        check_length(f"{o}: points", points, MAX_CONTAINER_POINTS)
+        check_length(f"{o}: cuts", self._cuts + ((points, width),), MAX_CUTS)
         pts = check_points(o, "points", points, 1)
         width = check_coord(o, "width", check_positive(o, "width", width))
         return Container(self._kind, self._params, rings=self._rings, mask=self._mask,
@@ -252,6 +257,7 @@ class Container:
         cuts = d.get("cuts") or []
         if not isinstance(cuts, list):
             raise ValueError(f"{o}: cuts must be a list of {{'points', 'width'}}, got {cuts!r:.60}")
+        check_length(f"{o}: cuts", cuts, MAX_CUTS)
         for cut in cuts:
             if not isinstance(cut, dict) or "points" not in cut or "width" not in cut:
                 raise ValueError(f"{o}: each cut needs 'points' and 'width', got {cut!r:.60}")

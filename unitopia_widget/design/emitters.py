@@ -21,6 +21,7 @@ from numbers import Real
 import numpy as np
 
 from .bezier import Curve, fit_bezier
+from .bounds import MAX_EMITTER_POINTS, check_length
 from .validate import check_choice, check_finite, check_positive
 
 MODES = ("free", "line", "band")
@@ -82,6 +83,7 @@ class CurveEmitter:
     kind = "curve"
 
     def __init__(self, points, speed: float = 1.0, direction="along", mode: str = "free"):
+        check_length("CurveEmitter: points", points, MAX_EMITTER_POINTS)
         self.curve = Curve(points)
         self.speed = check_positive("CurveEmitter", "speed", speed, allow_zero=True)
         self.direction = _direction("CurveEmitter", direction)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 import warnings
 from dataclasses import dataclass
+from numbers import Number, Real
 
 import numpy as np
 import pandas as pd
@@ -78,17 +79,45 @@ def is_css_color(value) -> bool:
 
 
 def check_column(df: pd.DataFrame, channel: str, column) -> None:
-    """A ValueError naming the channel, the column and the closest existing one."""
+    """A ValueError naming the channel, the column and the closest existing one; or naming
+    the column when the DataFrame has several columns of that name (``df[column]`` would
+    be a DataFrame, not one column)."""
     if column not in df.columns:
         names = ", ".join(repr(c) for c in df.columns)
         raise ValueError(f"{channel}={column!r}: no such column{closest(column, df.columns)}; "
                          f"the columns are {names}")
+    count = int((df.columns == column).sum())
+    if count > 1:
+        raise ValueError(f"{channel}={column!r}: the DataFrame has {count} columns named "
+                         f"{column!r}; rename them, or drop the repeats with "
+                         f"df.loc[:, ~df.columns.duplicated()]")
+
+
+def check_real(channel: str, column, series: pd.Series) -> None:
+    """A ValueError naming the channel, the column and its dtype when ``series`` holds
+    numbers that are not real: a complex dtype, or an object column holding complex
+    numbers or numbers mixed with other values (text, lists, ...)."""
+    if pd.api.types.is_complex_dtype(series):
+        raise ValueError(f"{channel}={column!r}: the column must hold real numbers, got dtype "
+                         f"{series.dtype}; pass the real part (df[{column!r}].real) or the "
+                         f"magnitude (abs)")
+    if series.dtype != object:
+        return
+    values = series.dropna()
+    kinds = {type(v).__name__ for v in values}
+    numbers = [isinstance(v, Number) and not isinstance(v, bool) for v in values]
+    unreal = any(isinstance(v, Number) and not isinstance(v, Real) for v in values)
+    if unreal or (any(numbers) and not all(numbers)):
+        raise ValueError(f"{channel}={column!r}: the column (dtype object) mixes "
+                         f"{', '.join(sorted(kinds))}; it must hold real numbers only (or, for "
+                         f"x and y, categories only); convert it (pd.to_numeric, .astype(str))")
 
 
 def numeric_column(df: pd.DataFrame, channel: str, column, positive: bool) -> np.ndarray:
     """The column as float64, checked: numeric, finite, and > 0 (or >= 0)."""
     check_column(df, channel, column)
     series = df[column]
+    check_real(channel, column, series)
     if not pd.api.types.is_numeric_dtype(series) or pd.api.types.is_bool_dtype(series):
         raise ValueError(f"{channel}={column!r}: the column must be numeric, "
                          f"got dtype {series.dtype}")
@@ -108,8 +137,8 @@ def invalid_rows(df: pd.DataFrame, bindings: dict) -> np.ndarray:
     bad = np.zeros(len(df), dtype=bool)
     for channel in NUMERIC_CHANNELS:
         column = bindings.get(channel)
-        if isinstance(column, str) and column in df.columns and \
-                pd.api.types.is_numeric_dtype(df[column]):
+        if isinstance(column, str) and (df.columns == column).sum() == 1 and \
+                is_real(df[column]):
             values = df[column].to_numpy(dtype=float, na_value=np.nan)
             floor_ok = values >= 0 if channel == "margin" else values > 0
             bad |= ~np.isfinite(values) | ~floor_ok
@@ -232,6 +261,7 @@ def _colors(df, color, palette, domain=None) -> list[str]:
         raise ValueError(f"color={color!r} is neither a column{closest(color, df.columns)} "
                          f"nor a CSS colour; the columns are "
                          + ", ".join(repr(c) for c in df.columns))
+    check_column(df, "color", color)
     series = df[color]
     if is_continuous(series):
         return sequential(continuous_values(series), domain)
@@ -244,6 +274,12 @@ def _colors(df, color, palette, domain=None) -> list[str]:
         raise unhashable("color", color, series) from None
 
 
+def is_real(series: pd.Series) -> bool:
+    """True for a column of real numbers: numeric, not bool, not complex."""
+    return (pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series)
+            and not pd.api.types.is_complex_dtype(series))
+
+
 def is_temporal(series: pd.Series) -> bool:
     """True for a datetime column (timezone-aware too)."""
     return pd.api.types.is_datetime64_any_dtype(series)
@@ -251,8 +287,7 @@ def is_temporal(series: pd.Series) -> bool:
 
 def is_continuous(series: pd.Series) -> bool:
     """True for a column that colour encodes on a continuous scale: numbers or datetimes."""
-    return is_temporal(series) or (pd.api.types.is_numeric_dtype(series)
-                                   and not pd.api.types.is_bool_dtype(series))
+    return is_temporal(series) or is_real(series)
 
 
 def continuous_values(series: pd.Series) -> np.ndarray:

@@ -19,14 +19,23 @@ def design_code(design: dict, factory: str, df_name: str = "df", var: str = "cha
             f"{var} = {factory}.from_design({df_name}, design)\n")
 
 
+def naming(error: OSError, what: str) -> OSError:
+    """``error`` again (same class and errno) with its message prefixed by ``what``, so it
+    names the path the user gave, not a temporary file."""
+    message = f"{what}: {error.strerror or error}"
+    return type(error)(message) if error.errno is None else type(error)(error.errno, message)
+
+
 def read_json(path, what: str = "design"):
     """The JSON value in the file at ``path``; a file that is not JSON raises ValueError
-    naming it as the ``what`` file."""
+    naming it as the ``what`` file, one that cannot be read an OSError naming it."""
     try:
         with open(path, encoding="utf-8") as f:
             return json.load(f)
     except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as e:
         raise ValueError(f"{what} file {os.fspath(path)!r} is not valid JSON: {e}") from None
+    except OSError as e:   # a folder, /proc/self/mem, a vanished disk: name the path given
+        raise naming(e, f"cannot read the {what} file {os.fspath(path)!r}") from None
 
 
 def load_design(path) -> dict:

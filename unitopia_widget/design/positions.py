@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .encodings import (MISSING, check_column, continuous_values, is_continuous, is_temporal,
-                        sorted_unique)
+from .encodings import (MISSING, check_column, check_real, continuous_values, is_continuous,
+                        is_temporal, sorted_unique)
 from .validate import check_choice
 
 POSITION_CHANNELS = ("x", "y")
@@ -75,6 +75,7 @@ def position_scale(df: pd.DataFrame, channel: str, column, kind: str = "linear")
         raise TypeError(f"{channel} must be a column name or None, got {column!r}")
     check_column(df, channel, column)
     series = df[column]
+    check_real(channel, column, series)
     if kind == "log" and not (is_continuous(series) and pd.api.types.is_numeric_dtype(series)):
         raise ValueError(f"{channel}={column!r} with {channel}_scale='log': the column must be "
                          f"numeric, got dtype {series.dtype}; use {channel}_scale='linear'")
@@ -106,7 +107,8 @@ def invalid_position_rows(df: pd.DataFrame, bindings: dict) -> np.ndarray:
     bad = np.zeros(len(df), dtype=bool)
     for channel in POSITION_CHANNELS:
         column = bindings.get(channel)
-        if isinstance(column, str) and column in df.columns and is_continuous(df[column]):
+        if isinstance(column, str) and (df.columns == column).sum() == 1 and \
+                is_continuous(df[column]):
             kind = bindings.get(f"{channel}_scale") or "linear"
             bad |= invalid_values(continuous_values(df[column]), kind)
     return bad

@@ -11,6 +11,8 @@ from numbers import Real
 
 import numpy as np
 
+from .bounds import (MAX_BLOCKS, MAX_COLUMN_NAME, MAX_FORCES, MAX_ROW_LABELS,
+                     check_length)
 from .containers import Container
 from .emitters import CurveEmitter, GridEmitter, emitter_from_json
 from .encodings import MARGINS_OF
@@ -152,6 +154,11 @@ class Layer:
             if d.get(key) is not None and not isinstance(d[key], kind):
                 raise ValueError(f"{who}: {key} must be a JSON {'object' if kind is dict else 'array'}, "
                                  f"got {type(d[key]).__name__}")
+        for key, bound in (("forces", MAX_FORCES), ("blocks", MAX_BLOCKS)):
+            check_length(f"{who}: {key}", d.get(key) or [], bound)
+        if isinstance(d.get("rows"), dict):
+            check_length(f"{who}: rows index", d["rows"].get("index") or [], MAX_ROW_LABELS,
+                         "labels")
         _check_inline(who, d)
         enc = {k: v for k, v in (d.get("encodings") or {}).items() if k in CHANNELS}
         return cls(d["name"], mark=_design_marks(who, d), rows=d.get("rows"),
@@ -267,6 +274,7 @@ def _rows(rows):
             set(rows) == {"column", "value"} or (set(rows) == {"index"}
                                                  and isinstance(rows["index"], list)))):
         if rows is not None and "index" in rows:
+            check_length("layer rows index", rows["index"], MAX_ROW_LABELS, "labels")
             seen, twice = set(), {}
             for label in rows["index"]:
                 key = repr(label)
@@ -302,11 +310,18 @@ def _emitter(value):
 
 def _forces(value):
     items = [value] if isinstance(value, (PointForce, DirectionalForce, dict)) else list(value or [])
+    check_length("forces", items, MAX_FORCES)
     out = [_from_json("force", force_from_json, f) if isinstance(f, dict) else f for f in items]
     for f in out:
         if not isinstance(f, (PointForce, DirectionalForce)):
             raise TypeError(f"forces must be uw.PointForce or uw.DirectionalForce objects, got {f!r}")
     return out
+
+
+def _blocks(value) -> list[str]:
+    blocks = [value] if isinstance(value, str) else list(value or [])
+    check_length("blocks", blocks, MAX_BLOCKS)
+    return [str(b) for b in blocks]
 
 
 def _fill(value):
@@ -341,6 +356,8 @@ def _channel(name):
     def check(value):
         if name == "margin" and value is None:
             return 0.0   # no margin (None would reach the encoder as a number)
+        if isinstance(value, str):
+            check_length(f"{name} (a column name)", value, MAX_COLUMN_NAME, "characters")
         if value is None or isinstance(value, str):
             return value
         if name == "margin" and isinstance(value, Real) and not isinstance(value, bool):
@@ -356,7 +373,7 @@ _CHECKS = {
     "mark": _mark_set, "container": _container, "emitter": _emitter, "forces": _forces,
     "boundary": lambda v: check_choice("Layer", "boundary", v, BOUNDARIES),
     "fill": _fill, "orientation": _orientation, "rotate": _rotate,
-    "blocks": lambda v: [str(b) for b in ([v] if isinstance(v, str) else list(v or []))],
+    "blocks": _blocks,
     "iterations": _iterations, "name": lambda v: layer_name(v),
     "footprint": lambda v: check_footprint("footprint", v),
     "margin_of": lambda v: check_choice("Layer", "margin_of", v, MARGINS_OF),

@@ -14,12 +14,13 @@ import tempfile
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import resvg_py
 from defusedxml import DefusedXmlException
 from defusedxml.ElementTree import DefusedXMLParser
 from PIL import Image, ImageColor
 
 from .images import MAX_PIXELS, parse_data_url, probe_size
+from .svgcost import cap_filters
+from .svgworker import RENDER_SECONDS, RenderTimeout, svg_to_png
 
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
@@ -156,6 +157,7 @@ def parse_svg(text: str | bytes, _nested: int = 0) -> ET.Element:
 
     Raises ValueError for entity declarations, malformed XML, a root that is
     not ``svg``, or input over :data:`MAX_SVG_BYTES` / :data:`MAX_SVG_ELEMENTS`.
+    Costly filter primitives are capped, with a warning (``svgcost.cap_filters``).
     """
     if isinstance(text, (bytes, bytearray, memoryview)):
         data = bytes(text)
@@ -193,6 +195,7 @@ def parse_svg(text: str | bytes, _nested: int = 0) -> ET.Element:
                 continue
             _clean_element(child, _nested)
             stack.append(child)
+    cap_filters(root)
     return root
 
 
@@ -224,7 +227,8 @@ def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) 
     The root's own ``width``/``height`` are replaced by the pixel size, so its
     viewBox (or user space) is stretched over exactly ``width x height`` pixels.
     ``opaque`` renders every element at full opacity: the footprint a mark
-    occupies, however translucent its paint.
+    occupies, however translucent its paint. resvg runs in a worker process
+    (``svgworker``): Ctrl-C stops it, and a render past ``RENDER_SECONDS`` is refused.
     """
     if width < 1 or height < 1 or width * height > MAX_PIXELS:
         raise ValueError(f"render size {width} x {height} is out of range")
@@ -232,8 +236,12 @@ def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) 
                               preserveAspectRatio="none"))
     with tempfile.TemporaryDirectory(prefix="unitopia-svg-") as empty:
         try:
-            png = resvg_py.svg_to_bytes(svg_string=text, resources_dir=empty,
-                                        style_sheet=OPAQUE_CSS if opaque else None)
+            png = svg_to_png(RENDER_SECONDS, svg_string=text, resources_dir=empty,
+                             style_sheet=OPAQUE_CSS if opaque else None)
+        except RenderTimeout:
+            raise ValueError(f"SVG could not be drawn at {width} x {height} px within "
+                             f"{RENDER_SECONDS:g} s, so resvg was stopped ({_costliest(root)}); "
+                             f"simplify the mark") from None
         except (KeyboardInterrupt, SystemExit):
             raise
         except BaseException as exc:  # resvg panics surface as BaseException
@@ -246,6 +254,15 @@ def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) 
         out[:h, :w] = rgba[:h, :w]
         rgba = out
     return rgba
+
+
+def _costliest(root: ET.Element) -> str:
+    """The elements that likely made a render slow: its filter primitives, else a count."""
+    kinds = sorted({el.tag for el in root.iter() if isinstance(el.tag, str)
+                    and el.tag.lower().startswith("fe")})
+    if kinds:
+        return "its filter primitives: " + ", ".join(f"<{k}>" for k in kinds)
+    return f"{sum(1 for _ in root.iter()):,} elements"
 
 
 # --- Rewriting a sanitised tree for embedding: scoping and recolouring -------

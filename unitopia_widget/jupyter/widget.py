@@ -20,8 +20,7 @@ from ..design import icons
 from ..chart import ARGUMENTS, Chart, check_kwargs
 from ..design.files import load_design
 from ..design.encodings import rgba
-from ..output.files import write_json
-from .keep import KeptDesign
+from .keep import DesignFile, KeptDesign
 from .pins import Pinning
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
@@ -97,11 +96,12 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     def __init__(self, df: pd.DataFrame, design_path=None, **kwargs):
         check_kwargs("UnitoPia", kwargs, ARGUMENTS + ("design_path",))
         chart = _SyncedChart(df, **kwargs)
-        design_path = None if design_path is None else pathlib.Path(design_path)
-        if design_path is not None and design_path.exists():
-            chart.apply_design(load_design(design_path))   # the kept sketch wins
+        kept = None if design_path is None else DesignFile(design_path)
+        if kept is not None and kept.path.exists():
+            chart.apply_design(load_design(kept.path))   # the kept sketch wins
+            kept.seen()
         super().__init__(_session_id=uuid.uuid4().hex)
-        self._design_path = design_path
+        self._design_file = kept
         self._chart = chart
         self._runner = Runner()
         self._applying = False
@@ -358,8 +358,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         laid_out = self._laid_out is not None and self.placements is not None
         self.stale = laid_out and _layout_key(self.design) != self._laid_out
         self._push_extras()
-        if self._design_path is not None:
-            write_json(self._design_path, self.design)
+        self._keep_design()
 
     def _push_units(self) -> None:
         units = self._chart._units

@@ -18,6 +18,9 @@ import numpy as np
 from PIL import Image
 
 from ..io.svgsafe import SVG_NS
+from ..io.svgworker import RenderTimeout, svg_to_png
+
+EXPORT_SECONDS = 300.0   # one PNG export (a page or an atlas of sprites) at most
 
 _XML_ILLEGAL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 ICON_CREDIT = ("<!-- Icons: Font Awesome Free by Fonticons, Inc., CC BY 4.0, "
@@ -77,13 +80,17 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
 
 
 def to_png(svg: str, canvas, scale: float = 1.0) -> bytes:
-    """PNG bytes of ``svg`` rendered at ``scale`` x ``canvas`` (the SVG's width, height) (resvg)."""
-    import resvg_py
-
+    """PNG bytes of ``svg`` rendered at ``scale`` x ``canvas`` (the SVG's width, height) by
+    resvg in its worker process (``io/svgworker.py``), so Ctrl-C stops a long export; one
+    past ``EXPORT_SECONDS`` is refused."""
     w, h = canvas
-    data = resvg_py.svg_to_bytes(svg_string=svg, width=max(1, int(round(w * scale))),
-                                 height=max(1, int(round(h * scale))))
-    return bytes(data)
+    try:
+        return svg_to_png(EXPORT_SECONDS, svg_string=svg, width=max(1, int(round(w * scale))),
+                          height=max(1, int(round(h * scale))))
+    except RenderTimeout:
+        raise ValueError(f"the export could not be drawn within {EXPORT_SECONDS:g} s at "
+                         f"{w * scale:.0f} x {h * scale:.0f} px, so resvg was stopped; export "
+                         f"at a smaller scale, or as SVG") from None
 
 
 def png_array(svg: str, canvas, scale: float = 1.0) -> np.ndarray:

@@ -34,6 +34,7 @@ def bind(df: pd.DataFrame, layers) -> Units:
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
     palettes = {}
     for c in color_cols:
+        check_column(df, "color", c)
         if not is_continuous(df[c]):
             missing_warning(df[c], c)
             try:
