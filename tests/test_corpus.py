@@ -3,6 +3,7 @@ every axis, the measures catch what they claim to catch, and the quick slice of 
 engine stays within bounds (the whole corpus's numbers live in benchmarks/RESULTS.md)."""
 from __future__ import annotations
 
+import dataclasses
 import pathlib
 import sys
 
@@ -52,6 +53,16 @@ def measured(chart, container):
                                 {"layer-1": container}, {"layer-1"}, {})
 
 
+def measured_at(chart, container, placements):
+    """The measures of ``chart`` drawn with other ``placements``; its layout is kept."""
+    kept = chart.laid
+    try:
+        chart.laid = dataclasses.replace(kept, placements=placements)
+        return measured(chart, container)
+    finally:
+        chart.laid = kept
+
+
 def test_a_clean_layout_measures_clean(laid_out):
     m = measured(*laid_out)
     assert m["units"] == 30 and m["overlap"] < 0.01 and m["outside"] < 0.005 and m["empty"] < 0.1
@@ -59,23 +70,17 @@ def test_a_clean_layout_measures_clean(laid_out):
 
 def test_marks_piled_on_one_point_are_caught_as_overlap_and_leave_the_container_empty(laid_out):
     chart, container = laid_out
-    kept = chart.placements.copy()
-    try:
-        chart.placements[["x", "y"]] = (240.0, 180.0)
-        m = measured(chart, container)
-    finally:
-        chart.placements = kept
+    moved = chart.placements.copy()
+    moved[["x", "y"]] = (240.0, 180.0)
+    m = measured_at(chart, container, moved)
     assert m["overlap"] > 0.5 and m["empty"] > 0.5
 
 
 def test_marks_pushed_out_of_their_container_are_caught_as_ink_outside(laid_out):
     chart, container = laid_out
-    kept = chart.placements.copy()
-    try:
-        chart.placements["x"] = chart.placements["x"] + 200.0   # half of them leave the ellipse
-        m = measured(chart, container)
-    finally:
-        chart.placements = kept
+    moved = chart.placements.copy()
+    moved["x"] = moved["x"] + 200.0                     # half of them leave the ellipse
+    m = measured_at(chart, container, moved)
     assert m["outside"] > 0.3
 
 

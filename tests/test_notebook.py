@@ -8,12 +8,14 @@ from __future__ import annotations
 import base64
 import os
 import re
+import time
 from pathlib import Path
 
 import nbformat
 import pytest
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
+from test_svgcost import SCALED   # a filter the view-box cap lets through: resvg holds on
 
 ROOT = Path(__file__).resolve().parents[1]
 SETUP = ("import numpy as np, pandas as pd, torch, unitopia_widget as uw\n"
@@ -81,6 +83,37 @@ def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel_env):
         assert "unitopia-layout" not in threads
         assert _value(kc, "bool(np.allclose(np.frombuffer(w.frame, np.float32).reshape(-1, 4)[:, 0], "
                           "w.placements['x']))") == "True"       # the last frame is the layout
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
+
+
+def test_a_kernel_interrupt_stops_a_hung_mark_render_within_a_second(kernel_env):
+    # resvg holds the thread, so an interrupt never reached a mark's render: it runs in a
+    # worker process, which the notebook's stop button ends
+    from jupyter_client import KernelManager
+
+    km = KernelManager(kernel_name="python3")
+    km.start_kernel(env=kernel_env)
+    kc = km.client()
+    kc.start_channels()
+    try:
+        kc.wait_for_ready(timeout=120)
+        reply = kc.execute_interactive(SETUP + "from unitopia_widget.io import svgsafe\n"
+                                       "svgsafe.RENDER_SECONDS = 600\n", timeout=120)
+        assert reply["content"]["status"] == "ok"
+        msg_id = kc.execute(f"uw.Mark.from_spec({SCALED!r})", stop_on_error=False)
+        time.sleep(4)                                  # well inside resvg by now
+        sent = time.monotonic()
+        km.interrupt_kernel()
+        reply = kc.get_shell_msg(timeout=120)
+        while reply["parent_header"].get("msg_id") != msg_id:
+            reply = kc.get_shell_msg(timeout=120)
+        stopped = time.monotonic() - sent
+        assert reply["content"]["status"] == "error"
+        assert reply["content"]["ename"] == "KeyboardInterrupt"
+        assert stopped < 1.0, stopped
+        assert _value(kc, "bool(uw.Mark.from_spec('circle').silhouette(64).any())") == "True"
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=True)

@@ -1,13 +1,8 @@
 """Marks cost what they look like (unitopia_widget/io/svgcost.py): costly filter primitives
 are capped relative to the view box, with a warning, so a tiny mark cannot hold the kernel."""
 import json
-import os
-import signal
-import subprocess
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -109,31 +104,3 @@ def test_a_mark_past_its_render_budget_is_refused_naming_its_filter(monkeypatch)
         uw.Mark.from_spec(SCALED)
     assert time.perf_counter() - start < 5
     assert uw.Mark.from_spec("circle").silhouette(64).any()    # the next render starts afresh
-
-
-def test_ctrl_c_stops_a_hung_mark_render_within_a_second(tmp_path):
-    script = tmp_path / "hang.py"
-    script.write_text("import time, unitopia_widget as uw\n"
-                      "from unitopia_widget.io import svgsafe\n"
-                      "svgsafe.RENDER_SECONDS = 600\n"
-                      "print('rendering', flush=True)\n"
-                      "try:\n"
-                      f"    uw.Mark.from_spec({SCALED!r})\n"
-                      "except KeyboardInterrupt:\n"
-                      "    print(time.monotonic(), flush=True)\n"
-                      "    raise\n")
-    env = {**os.environ, "PYTHONPATH": str(Path(uw.__file__).parent.parent)}
-    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, env=env, text=True)
-    try:
-        assert proc.stdout.readline() == "rendering\n"
-        time.sleep(3)                       # well inside resvg by now
-        assert proc.poll() is None
-        sent = time.monotonic()             # one clock for both processes (Linux: since boot)
-        proc.send_signal(signal.SIGINT)
-        caught = float(proc.stdout.readline())   # the script's KeyboardInterrupt handler
-        proc.wait(timeout=30)
-    finally:
-        proc.kill()
-    assert "KeyboardInterrupt" in proc.stderr.read()
-    assert caught - sent < 1.0
