@@ -53,7 +53,9 @@ def test_nbconvert_html_shows_the_laid_out_chart(tmp_path, kernel_env):
     assert "Twelve rows" in svg and 'class="legend"' in svg
 
 
-def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel_env):
+@pytest.fixture
+def kernel(kernel_env):
+    """A real IPython kernel on this checkout, ready: ``(manager, client)``."""
     from jupyter_client import KernelManager
 
     km = KernelManager(kernel_name="python3")
@@ -62,61 +64,59 @@ def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel_env):
     kc.start_channels()
     try:
         kc.wait_for_ready(timeout=120)
-        reply = kc.execute_interactive(SETUP + "import unitopia_widget\n"
-                                       "assert unitopia_widget.__file__.startswith(%r)\n"
-                                       "w = uw.UnitoPia(df, size='v', iterations=100000)\n" % str(ROOT),
-                                       timeout=120)
-        assert reply["content"]["status"] == "ok"
-        msg_id = kc.execute("w.run(wait=True)", stop_on_error=False)   # keep later requests
-        _wait_for_frames(kc, 2)
-        km.interrupt_kernel()
-        reply = kc.get_shell_msg(timeout=120)
-        while reply["parent_header"].get("msg_id") != msg_id:
-            reply = kc.get_shell_msg(timeout=120)
-        assert reply["content"]["status"] == "error"
-        assert reply["content"]["ename"] == "KeyboardInterrupt"
-        out = _value(kc, "(w.status, w._runner.running, len(w.placements), "
-                         "w._chart.result.cancelled, w.progress['done'], "
-                         "[t.name for t in __import__('threading').enumerate()])")
-        status, running, placed, cancelled, done, threads = eval(out)
-        assert (status, running, placed, cancelled, done) == ("stopped", False, 12, True, True)
-        assert "unitopia-layout" not in threads
-        assert _value(kc, "bool(np.allclose(np.frombuffer(w.frame, np.float32).reshape(-1, 4)[:, 0], "
-                          "w.placements['x']))") == "True"       # the last frame is the layout
+        yield km, kc
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=True)
 
 
-def test_a_kernel_interrupt_stops_a_hung_mark_render_within_a_second(kernel_env):
+def test_a_kernel_interrupt_during_run_wait_stops_the_run_cleanly(kernel):
+    km, kc = kernel
+    reply = kc.execute_interactive(SETUP + "import unitopia_widget\n"
+                                   "assert unitopia_widget.__file__.startswith(%r)\n"
+                                   "w = uw.UnitoPia(df, size='v', iterations=100000)\n" % str(ROOT),
+                                   timeout=120)
+    assert reply["content"]["status"] == "ok"
+    msg_id = kc.execute("w.run(wait=True)", stop_on_error=False)   # keep later requests
+    _wait_for_frames(kc, 2)
+    reply = _interrupt(km, kc, msg_id)
+    assert reply["content"]["status"] == "error"
+    assert reply["content"]["ename"] == "KeyboardInterrupt"
+    out = _value(kc, "(w.status, w._runner.running, len(w.placements), "
+                     "w._chart.result.cancelled, w.progress['done'], "
+                     "[t.name for t in __import__('threading').enumerate()])")
+    status, running, placed, cancelled, done, threads = eval(out)
+    assert (status, running, placed, cancelled, done) == ("stopped", False, 12, True, True)
+    assert "unitopia-layout" not in threads
+    assert _value(kc, "bool(np.allclose(np.frombuffer(w.frame, np.float32).reshape(-1, 4)[:, 0], "
+                      "w.placements['x']))") == "True"       # the last frame is the layout
+
+
+def test_a_kernel_interrupt_stops_a_hung_mark_render_within_a_second(kernel):
     # resvg holds the thread, so an interrupt never reached a mark's render: it runs in a
     # worker process, which the notebook's stop button ends
-    from jupyter_client import KernelManager
+    km, kc = kernel
+    reply = kc.execute_interactive(SETUP + "from unitopia_widget.io import svgsafe\n"
+                                   "svgsafe.RENDER_SECONDS = 600\n", timeout=120)
+    assert reply["content"]["status"] == "ok"
+    msg_id = kc.execute(f"uw.Mark.from_spec({SCALED!r})", stop_on_error=False)
+    time.sleep(4)                                  # well inside resvg by now
+    sent = time.monotonic()
+    reply = _interrupt(km, kc, msg_id)
+    stopped = time.monotonic() - sent
+    assert reply["content"]["status"] == "error"
+    assert reply["content"]["ename"] == "KeyboardInterrupt"
+    assert stopped < 1.0, stopped
+    assert _value(kc, "bool(uw.Mark.from_spec('circle').silhouette(64).any())") == "True"
 
-    km = KernelManager(kernel_name="python3")
-    km.start_kernel(env=kernel_env)
-    kc = km.client()
-    kc.start_channels()
-    try:
-        kc.wait_for_ready(timeout=120)
-        reply = kc.execute_interactive(SETUP + "from unitopia_widget.io import svgsafe\n"
-                                       "svgsafe.RENDER_SECONDS = 600\n", timeout=120)
-        assert reply["content"]["status"] == "ok"
-        msg_id = kc.execute(f"uw.Mark.from_spec({SCALED!r})", stop_on_error=False)
-        time.sleep(4)                                  # well inside resvg by now
-        sent = time.monotonic()
-        km.interrupt_kernel()
+
+def _interrupt(km, kc, msg_id: str) -> dict:
+    """Interrupt the kernel (the notebook's stop button); the reply to request ``msg_id``."""
+    km.interrupt_kernel()
+    reply = kc.get_shell_msg(timeout=120)
+    while reply["parent_header"].get("msg_id") != msg_id:
         reply = kc.get_shell_msg(timeout=120)
-        while reply["parent_header"].get("msg_id") != msg_id:
-            reply = kc.get_shell_msg(timeout=120)
-        stopped = time.monotonic() - sent
-        assert reply["content"]["status"] == "error"
-        assert reply["content"]["ename"] == "KeyboardInterrupt"
-        assert stopped < 1.0, stopped
-        assert _value(kc, "bool(uw.Mark.from_spec('circle').silhouette(64).any())") == "True"
-    finally:
-        kc.stop_channels()
-        km.shutdown_kernel(now=True)
+    return reply
 
 
 def _value(kc, expression: str) -> str:

@@ -13,6 +13,7 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 import unitopia_widget as uw
+from designs import flake   # benchmarks/designs.py: the line-drawn snowflake
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STYLED = [os.path.join(ROOT, "benchmarks", "data", n + ".svg")
@@ -99,23 +100,6 @@ def hollow(rng, folder):
             'cy="50" r="44" fill="none" stroke="#4e79a7" stroke-width="6"/></svg>'), False
     return "hollow:styled", uw.Mark.svg(os.path.join(ROOT, "tests", "data", "marks",
                                                      "class_styled.svg")), False
-
-
-def flake(arms: int, branch: float, width: float, colour: str) -> uw.Mark:
-    """A line-drawn snowflake: ``arms`` spokes with side branches at ``branch`` of the spoke."""
-    lines = []
-    for a in np.linspace(0, 2 * math.pi, arms, endpoint=False) - math.pi / 2:
-        u = np.array([math.cos(a), math.sin(a)])
-        lines.append((50, 50, *(50 + 44 * u)))
-        b = 50 + 44 * branch * u
-        for turn in (0.6, -0.6):
-            v = np.array([math.cos(a + turn), math.sin(a + turn)])
-            lines.append((*b, *(b + 16 * v)))
-    body = "".join(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}"/>'
-                   for x1, y1, x2, y2 in lines)
-    return uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
-                       f'<g stroke="{colour}" stroke-width="{width}" stroke-linecap="round">'
-                       f'{body}</g></svg>')
 
 
 def spiky(rng, folder):
