@@ -33,3 +33,16 @@ def check_count(field: str, count: int, bound: int, what: str = "entries") -> No
     if count > bound:
         raise ValueError(f"{field} has {count:,} {what}; at most {bound:,} are allowed "
                          f"(see 'Bounds' in docs/protocol.md)")
+
+
+def sketch_strokes(strokes) -> list:
+    """The strokes of a sketch mark as a list, within ``MAX_STROKES`` strokes and
+    ``MAX_SKETCH_POINTS`` points together (a ValueError naming the bound past either)."""
+    if not hasattr(strokes, "__iter__"):
+        raise ValueError(f"sketch strokes must be a list of (k, 2) point lists, got "
+                         f"{type(strokes).__name__}")
+    strokes = list(strokes)
+    check_length("sketch strokes", strokes, MAX_STROKES)
+    check_count("sketch strokes", sum(len(s) for s in strokes if hasattr(s, "__len__")),
+                MAX_SKETCH_POINTS, "points")
+    return strokes

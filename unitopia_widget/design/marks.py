@@ -26,7 +26,7 @@ from scipy import ndimage
 
 from . import icons
 from ..io import images, svgsafe
-from .bounds import MAX_SKETCH_POINTS, MAX_STROKES, check_count, check_length
+from .bounds import sketch_strokes
 from .validate import short
 
 DEFAULT_COLOR = "#4e79a7"
@@ -303,13 +303,7 @@ class Mark:
             raise ValueError(f"sketch width must be a positive number, got {width!r}")
         if svgsafe.parse_color(color) is None:
             raise ValueError(f"sketch color must be a CSS colour, got {color!r}")
-        if not hasattr(strokes, "__iter__"):
-            raise ValueError(f"sketch strokes must be a list of (k, 2) point lists, got "
-                             f"{type(strokes).__name__}")
-        strokes = list(strokes)
-        check_length("sketch strokes", strokes, MAX_STROKES)
-        check_count("sketch strokes", sum(len(s) for s in strokes if hasattr(s, "__len__")),
-                    MAX_SKETCH_POINTS, "points")
+        strokes = sketch_strokes(strokes)
         try:
             lines = [np.asarray(s, dtype=np.float64).reshape(-1, 2) for s in strokes]
         except (TypeError, ValueError):
