@@ -7,7 +7,7 @@ import numpy as np
 import torch
 
 from .resurface import resurface
-from .state import Rule, State
+from .state import Rule, State, unit_overlap
 from .uncross import uncross
 
 
@@ -36,8 +36,7 @@ def unit_crowding(s: State) -> np.ndarray:
     if hollow is None or len(hollow) == 0:
         return worst
     n, values = len(p.layer), s.values.detach()
-    layer = torch.as_tensor(p.layer, device=values.device, dtype=torch.long)
-    over = p.terms.unit_overlap(values, s.index, s.owner, layer, n).cpu().numpy()
+    over = unit_overlap(s).cpu().numpy()
     drawn = torch.zeros(n, dtype=values.dtype, device=values.device).index_add_(0, s.owner, values)
     share = over[hollow] / np.maximum(drawn.cpu().numpy()[hollow] * p.ink_share[hollow], 1e-6)
     np.maximum.at(worst, s.ctl.unit_group[hollow], share)

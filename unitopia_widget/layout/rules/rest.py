@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import torch
 
-from .state import Rule, State, forget
+from .state import Rule, forget, unit_overlap
 
 
 @dataclass(frozen=True)
@@ -76,8 +76,9 @@ class Rest(Rule):
         # creep goes less far, a mark falling with nothing under it as far or further
         falling = torch.zeros_like(pouring)
         if s.path is not None:
-            falling = pouring & (distance > c.settle_straight * s.steps.patience * s.steps.lr * s.radius) \
-                & (distance > c.settle_straight * s.path) & untouched(s)
+            smallest = s.steps.patience * s.steps.lr * s.radius   # a window of gain-1 steps
+            falling = pouring & (distance > c.settle_straight * smallest) \
+                & (distance > c.settle_straight * s.path) & (unit_overlap(s) <= 0.0)
             s.path.zero_()
         moving = pouring & (distance > bar) | falling
         s.calm = s.moving is not None and not bool((moving & s.moving).any())
@@ -91,11 +92,3 @@ class Rest(Rule):
         s.travelling = moved > bar
         s.window_start = now
         return came_to_rest
-
-
-def untouched(s: State) -> torch.Tensor:
-    """``(N,)`` bool: units whose ink overlaps no other unit's (nor a lower stratum's) at this
-    iteration's samples: nothing holds them up."""
-    n, values = len(s.p.layer), s.values.detach()
-    layer = torch.as_tensor(s.p.layer, device=values.device, dtype=torch.long)
-    return s.p.terms.unit_overlap(values, s.index, s.owner, layer, n) <= 0.0

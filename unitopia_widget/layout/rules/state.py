@@ -1,6 +1,7 @@
 """What the rules share: the solver's ``State``, the ``Rule`` they are made from, the step
 sizes and cadence the solver and the rules both read (``Steps``), and the bookkeeping of a
-move made by hand (``movable``, ``forget``)."""
+move made by hand (``movable``, ``forget``) and each unit's overlap at the samples
+(``unit_overlap``)."""
 from __future__ import annotations
 
 import math
@@ -119,3 +120,11 @@ def forget(optimizer, params, units: list) -> None:
         for key in ("exp_avg", "exp_avg_sq"):
             if key in state:
                 state[key][units] = 0.0
+
+
+def unit_overlap(s: State) -> torch.Tensor:
+    """``(N,)`` each unit's overlapped alpha as the loss counts it (other units' and lower
+    strata's), raster px^2, at this iteration's samples (``CanvasTerms.unit_overlap``)."""
+    values = s.values.detach()
+    layer = torch.as_tensor(s.p.layer, device=values.device, dtype=torch.long)
+    return s.p.terms.unit_overlap(values, s.index, s.owner, layer, len(s.p.layer))
