@@ -9,6 +9,9 @@ cd "$(dirname "$0")/.."
 EXTRAS=(--extra test --extra icons --extra bench --extra video --extra docs)
 # torch==2.13.0 (constraints.in) resolves to the local CPU wheel in /opt/wheels, whose
 # metadata lists no nvidia-* packages; PyPI's 2.13.0 would list them.
+# The lock keeps the versions it holds, read from constraints.txt; its torch line lost the
+# local label below, and read so it would be PyPI's CUDA build: give the label back first.
+[ -f constraints.txt ] && sed -i -E 's/^torch==([0-9.]+)$/torch==\1+cpu/' constraints.txt
 uv pip compile pyproject.toml "${EXTRAS[@]}" -c constraints.in \
   --python "$(command -v python)" \
   --find-links /opt/wheels --no-emit-find-links --custom-compile-command "bash scripts/lock.sh" \
