@@ -152,9 +152,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
 
     @property
     def selected(self) -> pd.DataFrame:
-        """The DataFrame rows of the units selected in the widget."""
-        rows = self._chart._units.rows
-        return self._chart.df.loc[[rows[i] for i in self.selected_units if 0 <= i < len(rows)]]
+        """The DataFrame rows of the units selected in the widget: each unit's row, every row
+        a ``per=`` mark covers, each row once."""
+        units = self._chart._units
+        chosen = [i for i in self.selected_units if 0 <= i < len(units.rows)]
+        return self._chart.df.loc[units.rows_of(chosen)]
 
     def set_data(self, df: pd.DataFrame) -> None:
         """Replace the rows, matched by index; the next run starts from the last layout."""
