@@ -142,9 +142,10 @@ def mark_titles(df: pd.DataFrame, units, layers, plain: list) -> list:
         keys = [c for c in dict.fromkeys(layer.encodings[ch] for ch in GROUPED)
                 if isinstance(c, str) and c in df.columns]
         what = "units" if layer.count is None else str(layer.count)
-        for k in np.nonzero(units.layer == i)[0]:
-            rep = df.loc[units.rows[k]]
-            lines = [f"{c}: {rep[c]}" for c in keys]
+        mine = np.nonzero(units.layer == i)[0]
+        values = df.loc[[units.rows[k] for k in mine], keys].to_numpy(dtype=object)
+        for k, rep in zip(mine, values):
+            lines = [f"{c}: {v}" for c, v in zip(keys, rep)]
             lines.append(f"{what}: {units.amount[k]:,.4g}" + (
                 f" ({units.fraction[k]:.0%} of a mark)" if units.fraction[k] < 1 else ""))
             covered = units.covered[units.cover_start[k]:units.cover_stop[k]].tolist()
