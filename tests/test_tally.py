@@ -146,7 +146,7 @@ def test_partial_marks_are_clipped_in_the_svg_and_the_png():
     chart = uw.Chart(COUNTS, count="n", per=100, partial=True, color="species", mark="fa:person",
                      arrange="grid", container=uw.Container.rect(10, 10, 780, 480))
     table = chart.layout()   # a grid stands still: a few iterations
-    assert len(table) == 20 and (table["clip"] < 1).sum() == 3
+    assert len(table) == 20 and (table["drawn"] < 1).sum() == 3
     assert table["units"].sum() == pytest.approx(1890)
     svg = chart.to_svg(legend=False)
     assert svg.count('clip-path="url(#c') == 3 and svg.count("<clipPath") == 3
@@ -156,8 +156,8 @@ def test_partial_marks_are_clipped_in_the_svg_and_the_png():
         x, y, w, h = table.loc[k, ["x", "y", "width", "height"]]
         return png[int(y - h / 2):int(y + h / 2) + 1, int(x - w / 2):int(x + w / 2) + 1, 3].sum()
 
-    whole = ink(int(np.nonzero(table["clip"].to_numpy() == 1)[0][0]))
-    for k in np.nonzero(table["clip"].to_numpy() < 1)[0]:
+    whole = ink(int(np.nonzero(table["drawn"].to_numpy() == 1)[0][0]))
+    for k in np.nonzero(table["drawn"].to_numpy() < 1)[0]:
         fraction = table.loc[k, "units"] / 100
         assert ink(k) / whole == pytest.approx(fraction, rel=0.1)
 

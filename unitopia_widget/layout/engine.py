@@ -60,7 +60,7 @@ def pick_device(device) -> str:
 def placements(units: Units, layers, result: Result) -> pd.DataFrame:
     """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height,
     mark); ``mark`` indexes the layer's marks. When a layer binds ``count=`` or ``per=``,
-    also ``units`` (the units each mark stands for) and ``clip`` (the share of its box
+    also ``units`` (the units each mark stands for) and ``drawn`` (the share of its box
     width drawn: below 1 for a partial mark; ``row`` is a mark's first row)."""
     names = np.array([layer.name for layer in layers], dtype=object)
     width = 2 * units.half_w * result.unit_scale
@@ -74,7 +74,7 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
     })
     if any(layer.count is not None or layer.per is not None for layer in layers):
         table["units"] = units.amount   # the units each mark stands for
-        table["clip"] = units.clip      # the share of its box width drawn (a partial mark's < 1)
+        table["drawn"] = units.clip     # the share of its box width drawn (a partial mark's < 1)
     return table
 
 

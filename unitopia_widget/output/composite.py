@@ -214,8 +214,8 @@ def chart_png(canvas, table, layers, colors, background=None, page=None, under: 
     biggest = np.zeros((len(pairs), 2))
     np.maximum.at(biggest, kind, drawn * scale)
     art = sprites(pairs, biggest)
-    if "clip" in table and (table["clip"] < 1).any():
-        art, kind = clipped(art, kind, table["clip"].to_numpy(dtype=float))
+    if "drawn" in table and (table["drawn"] < 1).any():
+        art, kind = clipped(art, kind, table["drawn"].to_numpy(dtype=float))
     # premultiplied colour, labelled RGBA for the compositor's "over"
     image = Image.frombytes("RGBA", size, image.convert("RGBa").tobytes())
     states = np.column_stack([cols[:, :3], drawn, np.ones(len(cols))])

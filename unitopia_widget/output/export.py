@@ -7,7 +7,7 @@ the layer, colour) in ``<defs>``, each mark keeping its own vector design; one
 ``<g class="unit" data-row data-layer transform>`` per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
 definition. The unit transform maps the mark's box onto its placement:
 ``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``. A partial
-mark (the table's ``clip`` below 1, ``per=`` with ``partial=True``) clips its ``<use>`` to
+mark (the table's ``drawn`` below 1, ``per=`` with ``partial=True``) clips its ``<use>`` to
 that share of its box's width, from the left.
 """
 from __future__ import annotations
@@ -66,7 +66,7 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
     if any(by_name[name][1].marks[k].kind == "icon" for name, k, _ in ids):
         out.append(ICON_CREDIT)   # the artwork's licence asks for attribution
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
-    clips = table["clip"].to_numpy(dtype=float) if "clip" in table else np.ones(len(table))
+    clips = table["drawn"].to_numpy(dtype=float) if "drawn" in table else np.ones(len(table))
     boxes = [by_name[name][1].marks[key[1]].box_size for name, key in zip(table["layer"], keys)]
     cuts = {}   # (box w, box h, clip) -> id of the clipPath that keeps that share of the width
     for (bw, bh), c in zip(boxes, clips):
