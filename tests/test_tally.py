@@ -11,6 +11,7 @@ import pytest
 from PIL import Image
 
 import unitopia_widget as uw
+from unitopia_widget.output import animation
 from unitopia_widget.design.tally import ink_clip, marks_per_group
 from unitopia_widget.layout.prepare.warm import unit_keys
 
@@ -142,7 +143,7 @@ def test_a_partial_mark_keeps_its_fraction_of_the_ink():
     assert ink_clip(person, 1.0) == 1.0
 
 
-def test_partial_marks_are_clipped_in_the_svg_and_the_png():
+def test_partial_marks_are_clipped_in_the_svg_the_png_the_page_and_the_film(tmp_path):
     chart = uw.Chart(COUNTS, count="n", per=100, partial=True, color="species", mark="fa:person",
                      arrange="grid", container=uw.Container.rect(10, 10, 780, 480))
     table = chart.layout()   # a grid stands still: a few iterations
@@ -160,6 +161,15 @@ def test_partial_marks_are_clipped_in_the_svg_and_the_png():
     for k in np.nonzero(table["drawn"].to_numpy() < 1)[0]:
         fraction = table.loc[k, "units"] / 100
         assert ink(k) / whole == pytest.approx(fraction, rel=0.1)
+    chart.save(tmp_path / "chart.html")
+    assert (tmp_path / "chart.html").read_text().count('clip-path=\\"url(#c') == 3
+    last = animation.render(chart, svg, fps=2, seconds=0.5)[-1]   # the film's last frame
+    film = np.asarray(last.convert("L"), dtype=float)
+    k = int(np.nonzero(table["drawn"].to_numpy() < 1)[0][0])
+    x, y, w, h = table.loc[k, ["x", "y", "width", "height"]]
+    box = film[int(y - h / 2):int(y + h / 2), int(x - w / 2):int(x + w / 2)]
+    right = box[:, int(w * table.loc[k, "drawn"]) + 2:]
+    assert right.min() > 250 and box.min() < 200   # ink left of the cut, none right of it
 
 
 def test_count_per_rounding_and_partial_are_saved_and_written_as_code():
