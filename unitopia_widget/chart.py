@@ -14,6 +14,7 @@ import pandas as pd
 
 from .layout import engine
 from .layout.prepare.bind import bind
+from .layout.prepare.tally import mark_titles
 from .layout.prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, overfilled
 from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, titles as row_titles, tooltip_fields,
                                warn_small_marks)
@@ -29,14 +30,14 @@ from .design.arguments import (check_canvas, check_scales, check_seed, parse_mar
                                read_background, rows_of)
 from .design.upgrade import upgrade
 from .design.validate import closest
+from .design.bounds import MAX_UNITS  # noqa: F401  (the chart's bound, where tests look)
 
 ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin", "order", "container",
              "emitter", "forces", "boundary", "fill", "orientation", "rotate", "footprint",
              "margin_of", "canvas", "background", "seed", "device", "iterations", "dropna",
              "scales", "title", "caption",
              "legend", "tooltip", "size_range", "width_range", "height_range", "x", "y",
-             "x_scale", "y_scale", "arrange")
-MAX_UNITS = 20_000
+             "x_scale", "y_scale", "arrange", "count", "per", "rounding", "partial")
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
@@ -210,10 +211,7 @@ class Chart(HandControl):
             raise ValueError(f"{len(layers)} layers is more than this widget lays out "
                              f"({MAX_LAYERS}); merge some layers")
         block_order(layers)
-        units = bind(self.df, layers)
-        if len(units.rows) > MAX_UNITS:
-            raise ValueError(f"{len(units.rows)} units is more than this widget lays out "
-                             f"({MAX_UNITS}); sample or aggregate the rows first")
+        units = bind(self.df, layers)   # more than MAX_UNITS marks: refused there
         for half in (units.half_w, units.half_h):
             if not (np.isfinite(half).all() and half.min() > 0 and half.max() <= MAX_SPREAD * half.min()):
                 bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
@@ -280,9 +278,17 @@ class Chart(HandControl):
         return engine.boxes(self.laid, units, self.layers, self.canvas)
 
     def titles(self, units=None) -> list[str]:
-        """Tooltip text per unit, in unit order."""
+        """Tooltip text per unit, in unit order: its row's values (``tooltip=``); a ``per=``
+        mark's category, the units it stands for and the rows it covers."""
         units = self._units if units is None else units
-        return row_titles(self.df.loc[units.rows], self._tooltip)
+        if not any(layer.per is not None for layer in self.layers):
+            return row_titles(self.df.loc[units.rows], self._tooltip)
+        plain = [""] * len(units.rows)   # per= marks have their own; the others their row's
+        alone = [k for k, li in enumerate(units.layer) if self.layers[li].per is None]
+        for k, text in zip(alone, row_titles(self.df.loc[[units.rows[k] for k in alone]],
+                                             self._tooltip)):
+            plain[k] = text
+        return mark_titles(self.df, units, self.layers, plain)
 
     @property
     def tooltip(self):

@@ -2,7 +2,8 @@
 // units on top). A mark whose sprite is still loading is a plain ellipse in its colour.
 // Upright marks (angle 0: every layout without rotation) skip the setTransform and
 // draw axis-aligned, which software canvases blit about twice as fast.
-// units: Float32Array (N, 4) [layer, mark, base w, base h]; frame: (N, 4) [x, y, deg, scale].
+// units: Float32Array (N, 4) [layer, mark, base w, base h]; frame: (N, 4) [x, y, deg, scale];
+// clips: Float32Array (N,) the share of each mark's width drawn (a partial mark of per=), or null.
 
 const RAD = Math.PI / 180;
 
@@ -20,7 +21,7 @@ export function markCount({ units, frame }) {
 }
 
 /** Draws marks from..until-1; returns {maxSide}: the largest side drawn (canvas px). */
-export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
+export function drawRange(ctx, k, { units, frame, colors, bitmaps, clips }, from, until) {
   let maxSide = 0;
   let upright = false; // is the base transform (no rotation) set?
   for (let i = from; i < until; i++) {
@@ -47,6 +48,14 @@ export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until
       upright = false;
     }
     const bmp = bitmaps.get(units[4 * i + 1]);
+    const cut = clips && clips[i] < 1;
+    if (cut) {
+      // a partial mark: only the left share of its box, as in the SVG export
+      ctx.save();
+      ctx.beginPath();
+      ctx.rect(cx - w / 2, cy - h / 2, w * clips[i], h);
+      ctx.clip();
+    }
     if (bmp) {
       ctx.drawImage(bmp, cx - w / 2, cy - h / 2, w, h);
     } else {
@@ -55,6 +64,7 @@ export function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until
       ctx.ellipse(cx, cy, w / 2, h / 2, 0, 0, 2 * Math.PI);
       ctx.fill();
     }
+    if (cut) ctx.restore();
   }
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   return { maxSide };

@@ -35,7 +35,7 @@ export function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = new Set(), draft = null, index = null, indexAt = null, pinned = [];
+  let units = null, colors = null, clips = null, selected = new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = new Set();
   const painter = new MarksPainter(stage.canvases.marks);
   let marksPending = false; // marks changed while a paint was still going
@@ -137,7 +137,7 @@ export function renderView({ model, el, signal }) {
     }
     if (dirty.has("marks")) marksPending = true;
     if (marksPending && !painter.busy) {
-      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
+      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, clips, bitmaps, selected });
       marksPending = false;
     }
     if (painter.busy) {
@@ -183,6 +183,7 @@ export function renderView({ model, el, signal }) {
   function onUnits() {
     units = decodeFloat32(model.get("units"));
     colors = decodeUint8(model.get("colors"));
+    clips = decodeFloat32(model.get("clips"), 1);
     redraw("marks");
   }
   function onSelected() {
@@ -207,7 +208,7 @@ export function renderView({ model, el, signal }) {
 
   onModel(model, ["change:design"], onDesign, signal);
   onModel(model, ["change:frame"], onFrame, signal);
-  onModel(model, ["change:units", "change:colors"], onUnits, signal);
+  onModel(model, ["change:units", "change:colors", "change:clips"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
   onModel(model, ["change:pinned_units"], onPinned, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);

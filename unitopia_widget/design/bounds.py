@@ -17,6 +17,7 @@ MAX_STROKES = 1_000            # strokes in a sketch mark
 MAX_SKETCH_POINTS = 50_000     # points of a sketch mark, its strokes together
 MAX_BLOCKS = 100               # layers one layer blocks on (a design holds at most 100 layers)
 MAX_ROW_LABELS = 20_000        # index labels of a layer's rows (a chart draws at most 20,000 units)
+MAX_UNITS = 20_000             # marks one chart lays out (per=k draws one mark for k units)
 MAX_SLIDES = 100               # slides in a story
 MAX_COLUMN_NAME = 1_000        # characters of a column name bound to a channel
 

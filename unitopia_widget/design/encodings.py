@@ -27,7 +27,7 @@ MISSING = "missing"       # the category of missing values in a colour column
 MISSING_COLOR = "#bab0ac"  # grey, drawn last in the legend
 SEQUENTIAL = ("#f7e98e", "#9fd27f", "#3fae8a", "#24868e", "#355f8d", "#46327e")  # light -> dark
 DEFAULT_COLOR = "#4e79a7"
-NUMERIC_CHANNELS = ("size", "width", "height", "margin")
+NUMERIC_CHANNELS = ("size", "width", "height", "margin", "count")   # count: units per row
 MARGINS_OF = ("median", "own")   # what a margin is a fraction of: see capped_margin
 
 
@@ -140,7 +140,7 @@ def invalid_rows(df: pd.DataFrame, bindings: dict) -> np.ndarray:
         if isinstance(column, str) and (df.columns == column).sum() == 1 and \
                 is_real(df[column]):
             values = df[column].to_numpy(dtype=float, na_value=np.nan)
-            floor_ok = values >= 0 if channel == "margin" else values > 0
+            floor_ok = values >= 0 if channel in ("margin", "count") else values > 0
             bad |= ~np.isfinite(values) | ~floor_ok
     return bad
 

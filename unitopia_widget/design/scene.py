@@ -19,6 +19,7 @@ from .encodings import MARGINS_OF
 from .forces import DirectionalForce, PointForce, force_from_json
 from .marks import Mark, check_footprint
 from .positions import check_arrange, check_scale
+from .tally import check_count, check_partial, check_per, check_rounding
 from .validate import check_choice, check_finite, closest, short
 
 SCHEMA, VERSION = "unitopia-design", 4
@@ -29,9 +30,11 @@ BOUNDARIES = ("closed", "open")
 MAX_NAME = 200   # characters in a layer name
 ORIENTATIONS = (None, "to_center", "along_emitter")
 RANGES = ("size_range", "width_range", "height_range")   # (min_px, max_px) of a linear scale
+TALLY = ("count", "per", "rounding", "partial")   # units per row, one mark for k: design/tally.py
+TALLY_DEFAULTS = {"count": None, "per": None, "rounding": "largest-remainder", "partial": False}
 LAYER_FIELDS = ("mark", "container", "emitter", "forces", "boundary", "fill", "orientation",
                 "rotate", "blocks", "iterations", "footprint", "margin_of", "name", "x_scale",
-                "y_scale", "arrange") + CHANNELS + RANGES
+                "y_scale", "arrange") + CHANNELS + RANGES + TALLY
 
 
 class Layer:
@@ -59,6 +62,10 @@ class Layer:
     proportional to the value) or ``(min_px, max_px)``: the bound column's values map
     linearly onto mark extents from ``min_px`` to ``max_px`` (not area-true); the global
     scale then fits them to the container as it does any sizes, keeping their ratio.
+
+    ``count``: None (one unit per row) or a column: each row stands for that many units.
+    ``per``: None (one mark per unit) or k: one mark for k units of one category;
+    ``rounding`` and ``partial`` say how a group's remainder is drawn (``design/tally.py``).
     """
 
     def __init__(self, name: str, mark=None, rows=None, container=None, emitter=None,
@@ -78,6 +85,8 @@ class Layer:
         self.size_range = self.width_range = self.height_range = None
         self.x_scale = self.y_scale = "linear"   # position channels: see design/positions.py
         self.arrange = "free"
+        for key, value in TALLY_DEFAULTS.items():
+            setattr(self, key, value)
         self.set(container=container, emitter=emitter, forces=forces, boundary=boundary,
                  fill=fill, orientation=orientation, rotate=rotate, blocks=blocks,
                  iterations=iterations, footprint=footprint, margin_of=margin_of, **encodings)
@@ -137,6 +146,8 @@ class Layer:
             "x_scale": self.x_scale, "y_scale": self.y_scale,
             "arrange": self.arrange,
             **{k: list(getattr(self, k)) for k in RANGES if getattr(self, k) is not None},
+            # written when set: a design without them keeps one mark per row
+            **{k: getattr(self, k) for k in TALLY if getattr(self, k) != TALLY_DEFAULTS[k]},
         }
 
     @classmethod
@@ -171,7 +182,8 @@ class Layer:
                    footprint=d.get("footprint", "silhouette"),
                    margin_of=d.get("margin_of", "median"), on_change=on_change,
                    **{k: d[k] for k in RANGES if d.get(k) is not None},
-                   **{k: d[k] for k in ("x_scale", "y_scale", "arrange") if k in d}, **enc)
+                   **{k: d[k] for k in ("x_scale", "y_scale", "arrange") + TALLY if k in d},
+                   **enc)
 
     def __repr__(self) -> str:
         bound = ", ".join(f"{k}={v!r}" for k, v in self.encodings.items() if v not in (None, 0.0))
@@ -379,6 +391,7 @@ _CHECKS = {
     "margin_of": lambda v: check_choice("Layer", "margin_of", v, MARGINS_OF),
     "x_scale": lambda v: check_scale("x", v), "y_scale": lambda v: check_scale("y", v),
     "arrange": check_arrange,
+    "count": check_count, "per": check_per, "rounding": check_rounding, "partial": check_partial,
     **{c: _channel(c) for c in CHANNELS},
     **{k: (lambda v, k=k: _range(k, v)) for k in RANGES},
 }

@@ -1,5 +1,6 @@
-"""``Units``: what the encodings make of a design's rows, one unit per row, the
-layers concatenated in drawing order (``layout.prepare.bind`` makes them)."""
+"""``Units``: what the encodings make of a design's rows, one unit (a mark) per row, per
+unit of a ``count=`` column, or per ``per=`` units, the layers concatenated in drawing
+order (``layout.prepare.bind`` makes them)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -11,7 +12,7 @@ import numpy as np
 class Units:
     """Per-unit arrays, ``(N,)`` unless noted, layers concatenated in drawing order."""
 
-    rows: list               # index label of each unit's row
+    rows: list               # index label of each unit's row (a per= mark: its first row)
     layer: np.ndarray        # layer index
     half_w: np.ndarray       # half box width at scale 1, canvas px
     half_h: np.ndarray       # half box height at scale 1
@@ -28,6 +29,22 @@ class Units:
     position: np.ndarray | None = None
     band: np.ndarray | None = None
     position_scales: list | None = None
+    #: one mark for k units (layout/prepare/tally.py): the units each mark stands for, the
+    #: drawn share of its ink and of its box width (1, or a partial mark's), and the rows it
+    #: covers: covered[cover_start[i]:cover_stop[i]], index labels
+    amount: np.ndarray | None = None
+    fraction: np.ndarray | None = None
+    clip: np.ndarray | None = None
+    covered: np.ndarray | None = None
+    cover_start: np.ndarray | None = None
+    cover_stop: np.ndarray | None = None
+
+    def rows_of(self, indices) -> list:
+        """The index labels of the rows units ``indices`` cover, each once, in order."""
+        if self.covered is None:
+            return list(dict.fromkeys(self.rows[i] for i in indices))
+        parts = [self.covered[self.cover_start[i]:self.cover_stop[i]] for i in indices]
+        return list(dict.fromkeys(label for part in parts for label in part.tolist()))
 
     @property
     def fill_fraction(self) -> np.ndarray:

@@ -50,7 +50,10 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
     the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
-    ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column),
+    ``count`` (a column: each row stands for that many units), ``per`` (one mark for that
+    many units of one category), ``rounding`` ("largest-remainder", the default, "floor",
+    "ceil", "nearest") and ``partial`` (True: each category's remainder drawn as one clipped
+    mark), ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column),
     ``margin_of`` ("median", the default: a mark larger than its layer's median mark keeps
     the median mark's gap; "own": each mark's own size however large), ``order`` (emission
     order column), ``container``, ``emitter``, ``forces``, ``boundary``
@@ -82,6 +85,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     units = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): layer, mark, base w, base h
     colors = t.Bytes(b"").tag(sync=True)               #: uint8 (N, 4) RGBA
     titles = t.List(t.Unicode()).tag(sync=True)        #: tooltip per unit
+    clips = t.Bytes(b"").tag(sync=True)                #: float32 (N,) drawn width share, b"" all whole
     frame = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): x, y, angle deg, scale
     frame_count = t.Int(0).tag(sync=True)              #: frames sent in the current run
     status = t.Unicode("idle").tag(sync=True)          #: idle, running, done, stopped, error
@@ -152,9 +156,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
 
     @property
     def selected(self) -> pd.DataFrame:
-        """The DataFrame rows of the units selected in the widget."""
-        rows = self._chart._units.rows
-        return self._chart.df.loc[[rows[i] for i in self.selected_units if 0 <= i < len(rows)]]
+        """The DataFrame rows of the units selected in the widget: each unit's row, every row
+        a ``per=`` mark covers, each row once."""
+        units = self._chart._units
+        chosen = [i for i in self.selected_units if 0 <= i < len(units.rows)]
+        return self._chart.df.loc[units.rows_of(chosen)]
 
     def set_data(self, df: pd.DataFrame) -> None:
         """Replace the rows, matched by index; the next run starts from the last layout."""
@@ -386,6 +392,8 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
             self.marks = marks
             self.units = np.ascontiguousarray(table, dtype=np.float32).tobytes()
             self.colors = rgba(units.colors).tobytes()
+            partial = units.clip is not None and (units.clip < 1).any()
+            self.clips = units.clip.astype(np.float32).tobytes() if partial else b""
             self.titles = self._chart.titles()
 
     @t.observe("design")

@@ -59,17 +59,23 @@ def pick_device(device) -> str:
 
 def placements(units: Units, layers, result: Result) -> pd.DataFrame:
     """The layout table: one row per unit (row, layer, x, y, angle, sx, sy, width, height,
-    mark); ``mark`` indexes the layer's marks."""
+    mark); ``mark`` indexes the layer's marks. When a layer binds ``count=`` or ``per=``,
+    also ``units`` (the units each mark stands for) and ``drawn`` (the share of its box
+    width drawn: below 1 for a partial mark; ``row`` is a mark's first row)."""
     names = np.array([layer.name for layer in layers], dtype=object)
     width = 2 * units.half_w * result.unit_scale
     height = 2 * units.half_h * result.unit_scale
     box = units.box_size
-    return pd.DataFrame({
+    table = pd.DataFrame({
         "row": units.rows, "layer": names[units.layer],
         "x": result.center[:, 0], "y": result.center[:, 1], "angle": result.angle,
         "sx": width / box[:, 0], "sy": height / box[:, 1], "width": width, "height": height,
         "mark": units.mark,
     })
+    if any(layer.count is not None or layer.per is not None for layer in layers):
+        table["units"] = units.amount   # the units each mark stands for
+        table["drawn"] = units.clip     # the share of its box width drawn (a partial mark's < 1)
+    return table
 
 
 def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,

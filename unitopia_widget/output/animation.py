@@ -17,7 +17,7 @@ from numbers import Real
 import numpy as np
 from PIL import Image
 
-from .composite import Compositor, distinct, sprites
+from .composite import Compositor, clipped, distinct, sprites
 from .export import png_array
 
 FORMATS = (".gif", ".webp", ".mp4", ".webm")
@@ -84,7 +84,10 @@ def render(chart, svg: str, fps=None, seconds=None, scale: float = 1.0) -> list[
     drawn = 2 * np.stack([units.half_w, units.half_h], axis=1)[None] * frames[:, :, 3:4]
     big = np.zeros((len(pairs), 2))
     np.maximum.at(big, kind, drawn.max(axis=0) * scale)
-    paint = Compositor(sprites(pairs, np.ceil(big)), (vx, vy), scale)
+    art = sprites(pairs, np.ceil(big))
+    if "drawn" in table and (table["drawn"] < 1).any():   # partial marks, as in the PNG
+        art, kind = clipped(art, kind, table["drawn"].to_numpy(dtype=float))
+    paint = Compositor(art, (vx, vy), scale)
     opaque = np.ones((len(kind), 1), np.float32)
     return [paint.draw(back, kind, np.concatenate([f[:, :3], d, opaque], axis=1))
             for f, d in zip(frames, drawn)]

@@ -99,6 +99,23 @@ def _atlas(batch, fragments, pairs, sizes, out) -> None:
             out[k] = atlas.crop((cx, cy, cx + sizes[k, 0], cy + sizes[k, 1]))
 
 
+def clipped(art: list, kind: np.ndarray, clips: np.ndarray) -> tuple[list, np.ndarray]:
+    """``art`` with a sprite added for each distinct (sprite, clip below 1): the sprite with
+    its columns past that share of its width cleared (a partial mark, ``to_svg``'s
+    clipPath), and ``kind`` pointing the clipped units at theirs."""
+    art, kind, made = list(art), kind.copy(), {}
+    for n in np.nonzero(clips < 1)[0]:
+        key = (int(kind[n]), float(clips[n]))
+        if key not in made:
+            cut = art[key[0]].copy()
+            keep = int(round(cut.width * key[1]))
+            cut.paste((0, 0, 0, 0), (keep, 0, cut.width, cut.height))
+            made[key] = len(art)
+            art.append(cut)
+        kind[n] = made[key]
+    return art, kind
+
+
 def tile(sprite: Image.Image, w: int, h: int, angle: int) -> Image.Image:
     """``sprite`` at ``w`` x ``h`` px, rotated ``angle`` degrees clockwise (RGBA; the
     rotation grows it to hold the corners)."""
@@ -197,6 +214,8 @@ def chart_png(canvas, table, layers, colors, background=None, page=None, under: 
     biggest = np.zeros((len(pairs), 2))
     np.maximum.at(biggest, kind, drawn * scale)
     art = sprites(pairs, biggest)
+    if "drawn" in table and (table["drawn"] < 1).any():
+        art, kind = clipped(art, kind, table["drawn"].to_numpy(dtype=float))
     # premultiplied colour, labelled RGBA for the compositor's "over"
     image = Image.frombytes("RGBA", size, image.convert("RGBa").tobytes())
     states = np.column_stack([cols[:, :3], drawn, np.ones(len(cols))])

@@ -6,7 +6,9 @@ licence when Font Awesome icons are drawn; one definition per (layer, mark of
 the layer, colour) in ``<defs>``, each mark keeping its own vector design; one
 ``<g class="unit" data-row data-layer transform>`` per unit holding a ``<title>`` with the row's values and a ``<use>`` of its
 definition. The unit transform maps the mark's box onto its placement:
-``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``.
+``translate(x y) rotate(angle) scale(sx sy) translate(-box_w/2 -box_h/2)``. A partial
+mark (the table's ``drawn`` below 1, ``per=`` with ``partial=True``) clips its ``<use>`` to
+that share of its box's width, from the left.
 """
 from __future__ import annotations
 
@@ -63,16 +65,25 @@ def to_svg(canvas, table, layers, colors, titles, background: str | None = None,
             defs.append(layer.marks[key[1]].svg_fragment(def_id, key[2]))
     if any(by_name[name][1].marks[k].kind == "icon" for name, k, _ in ids):
         out.append(ICON_CREDIT)   # the artwork's licence asks for attribution
-    out.append("<defs>" + "".join(defs) + "</defs>")
     cols = table[["x", "y", "angle", "sx", "sy"]].to_numpy(dtype=float)
+    clips = table["drawn"].to_numpy(dtype=float) if "drawn" in table else np.ones(len(table))
+    boxes = [by_name[name][1].marks[key[1]].box_size for name, key in zip(table["layer"], keys)]
+    cuts = {}   # (box w, box h, clip) -> id of the clipPath that keeps that share of the width
+    for (bw, bh), c in zip(boxes, clips):
+        if c < 1 and (bw, bh, c) not in cuts:
+            cuts[(bw, bh, c)] = f"c{len(cuts)}"
+            defs.append(f'<clipPath id="c{len(cuts) - 1}"><rect x="0" y="0" width="{bw * c:.6g}" '
+                        f'height="{bh:.6g}"/></clipPath>')
+    out.append("<defs>" + "".join(defs) + "</defs>")
     for k, (row, name) in enumerate(zip(table["row"], table["layer"])):
         x, y, a, sx, sy = cols[k]
-        bw, bh = by_name[name][1].marks[keys[k][1]].box_size
+        bw, bh = boxes[k]
         transform = (f"translate({_n(x)} {_n(y)}) rotate({_n(a)}) scale({sx:.6g} {sy:.6g}) "
                      f"translate({_n(-bw / 2)} {_n(-bh / 2)})")
+        cut = f' clip-path="url(#{cuts[(bw, bh, clips[k])]})"' if clips[k] < 1 else ""
         out.append(f'<g class="unit" data-row={quoteattr(str(row))} data-layer={quoteattr(name)} '
                    f'transform="{transform}"><title>{escape(titles[k])}</title>'
-                   f'<use href="#{ids[keys[k]]}"/></g>')
+                   f'<use href="#{ids[keys[k]]}"{cut}/></g>')
     if page is not None and page.overlay:
         out.append(page.overlay)
     out.append("</svg>")

@@ -325,7 +325,11 @@ def _range_note(df, rows, layer, units, boxes, i: int, channel: str) -> str:
 def _unit_key(df, rows, layers, units, boxes) -> Section:
     # the total only over several layers: one layer's entry already counts its rows
     total = f" ({len(units.rows)} rows)" if len(layers) > 1 else ""
-    sec = Section(f"1 mark = 1 row{total}")
+    keys = {_stands_for(layer) for layer in layers}
+    tallied = any(layer.count is not None or layer.per is not None for layer in layers)
+    if tallied:   # one mark for k units: the key says k, and of what
+        total = f" ({units.amount.sum():,.6g} units)" if len(layers) > 1 else ""
+    sec = Section(f"{next(iter(keys))}{total}" if len(keys) == 1 else "Marks")
     for i, layer in enumerate(layers):
         count = int((units.layer == i).sum())
         color = neutral(layer, units, i)
@@ -336,8 +340,23 @@ def _unit_key(df, rows, layers, units, boxes) -> Section:
         # one layer: its name (an internal "layer-1") says nothing the title does not
         named = f"{clip(layer.name, 30)}{_rows_label(layer)}: " if len(layers) > 1 else ""
         label = f"{named}{count} rows"
+        if tallied:
+            label = (f"{named}{count} marks for {units.amount[units.layer == i].sum():,.6g} "
+                     f"{_unit_name(layer)}" + (f" ({_stands_for(layer)})" if len(keys) > 1 else ""))
         if bound:
             label += " \u00b7 " + ", ".join(bound)
         sec.entries.append(Entry(None, layer.name[:200], label, layer.mark, color,
                                  *_swatch(layer.mark)))
     return sec
+
+
+def _unit_name(layer) -> str:
+    """What a layer's units are: rows, or the ``count=`` column's units."""
+    return "rows" if layer.count is None else clip(layer.count, 30)
+
+
+def _stands_for(layer) -> str:
+    """``"1 mark = k rows"`` (or ``= k <count column>``): what one of the layer's marks is."""
+    k = 1 if layer.per is None else layer.per
+    name = "row" if layer.count is None and k == 1 else _unit_name(layer)
+    return f"1 mark = {k:,} {name}"

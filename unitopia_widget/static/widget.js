@@ -1185,7 +1185,7 @@ var RAD = Math.PI / 180;
 function markCount({ units, frame }) {
   return Math.floor(Math.min(units ? units.length : 0, frame ? frame.length : 0) / 4);
 }
-function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
+function drawRange(ctx, k, { units, frame, colors, bitmaps, clips }, from, until) {
   let maxSide = 0;
   let upright = false;
   for (let i = from; i < until; i++) {
@@ -1212,6 +1212,13 @@ function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
       upright = false;
     }
     const bmp = bitmaps.get(units[4 * i + 1]);
+    const cut = clips && clips[i] < 1;
+    if (cut) {
+      ctx.save();
+      ctx.beginPath();
+      ctx.rect(cx - w / 2, cy - h2 / 2, w * clips[i], h2);
+      ctx.clip();
+    }
     if (bmp) {
       ctx.drawImage(bmp, cx - w / 2, cy - h2 / 2, w, h2);
     } else {
@@ -1220,6 +1227,7 @@ function drawRange(ctx, k, { units, frame, colors, bitmaps }, from, until) {
       ctx.ellipse(cx, cy, w / 2, h2 / 2, 0, 0, 2 * Math.PI);
       ctx.fill();
     }
+    if (cut) ctx.restore();
   }
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   return { maxSide };
@@ -2027,10 +2035,29 @@ function createSettingsPanel(view) {
         (t) => view.commit(setEncoding(view.design(), i, "margin", num(t.value) ?? 0))
       )),
       row("iterations", input("iterations", { type: "number", min: "1", step: "50", value: layer.iterations ?? 600 }, (t) => set({ iterations: Math.max(1, Math.round(num(t.value) ?? 600)) }))),
+      tallyRows(layer),
       blocksRow(design, i, layer),
       emitterRows(layer, i)
     ];
     replaceChildren(body, rows);
+  }
+  function tallyRows(layer) {
+    const numeric = (view.model.get("fields") || []).filter((f) => f.type === "numeric").map((f) => String(f.name));
+    const counts = [["", "1 per row"], ...numeric.map((n) => [n, n])];
+    if (layer.count != null && !numeric.includes(String(layer.count))) counts.push([String(layer.count), String(layer.count)]);
+    const per = layer.per ?? null;
+    return h(
+      "fieldset",
+      { class: "ut-tally" },
+      h("legend", { text: "one mark for k units" }),
+      row("count", select2("count", counts, layer.count ?? "", (v) => set({ count: v === "" ? null : v }))),
+      row("per", input("per", { type: "number", min: "0", step: "any", value: per ?? "", placeholder: "1 unit" }, (t) => {
+        const k = num(t.value);
+        set({ per: k != null && k > 0 ? k : null });
+      })),
+      per != null && row("rounding", select2("rounding", [["largest-remainder", "largest remainder"], ["floor", "floor"], ["ceil", "ceil"], ["nearest", "nearest"]], layer.rounding || "largest-remainder", (v) => set({ rounding: v }))),
+      per != null && row("partial", input("partial", { type: "checkbox", checked: !!layer.partial }, (t) => set({ partial: t.checked })))
+    );
   }
   function blocksRow(design, i, layer) {
     const others = design.layers.filter((_, k) => k !== i);
@@ -2819,7 +2846,7 @@ function renderView({ model, el, signal }) {
   const interp = new FrameInterpolator();
   const images = new ImageCache(() => redraw("scene"));
   const bitmaps = new MarkBitmaps(() => redraw("marks"));
-  let units = null, colors = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null, pinned = [];
+  let units = null, colors = null, clips = null, selected = /* @__PURE__ */ new Set(), draft = null, index = null, indexAt = null, pinned = [];
   const dirty = /* @__PURE__ */ new Set();
   const painter = new MarksPainter(stage.canvases.marks);
   let marksPending = false;
@@ -2920,7 +2947,7 @@ function renderView({ model, el, signal }) {
     }
     if (dirty.has("marks")) marksPending = true;
     if (marksPending && !painter.busy) {
-      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, bitmaps, selected });
+      painter.start(stage.k(), { units, frame: replay.frame() || interp.current, colors, clips, bitmaps, selected });
       marksPending = false;
     }
     if (painter.busy) {
@@ -2964,6 +2991,7 @@ function renderView({ model, el, signal }) {
   function onUnits() {
     units = decodeFloat32(model.get("units"));
     colors = decodeUint8(model.get("colors"));
+    clips = decodeFloat32(model.get("clips"), 1);
     redraw("marks");
   }
   function onSelected() {
@@ -2987,7 +3015,7 @@ function renderView({ model, el, signal }) {
   }
   onModel(model, ["change:design"], onDesign, signal);
   onModel(model, ["change:frame"], onFrame, signal);
-  onModel(model, ["change:units", "change:colors"], onUnits, signal);
+  onModel(model, ["change:units", "change:colors", "change:clips"], onUnits, signal);
   onModel(model, ["change:selected_units"], onSelected, signal);
   onModel(model, ["change:pinned_units"], onPinned, signal);
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);

@@ -1,6 +1,7 @@
 // Settings of the current layer: boundary, fill, orientation, arrange, the x/y scales
 // (once x or y is bound), rotate, margin,
-// iterations, blocks (checkboxes of the other layers) and the emitter's options.
+// iterations, one mark for k units (count, per, rounding, partial), blocks (checkboxes of
+// the other layers) and the emitter's options.
 import { h, replaceChildren, row } from "../dom.js";
 import { setEncoding, setLayerProps, updateLayer } from "../design-edit.js";
 
@@ -42,12 +43,29 @@ export function createSettingsPanel(view) {
       row("margin", input("margin", { type: "number", min: "0", step: "0.01", value: typeof margin === "number" ? margin : "", placeholder: typeof margin === "string" ? `field ${margin}` : "0" },
         (t) => view.commit(setEncoding(view.design(), i, "margin", num(t.value) ?? 0)))),
       row("iterations", input("iterations", { type: "number", min: "1", step: "50", value: layer.iterations ?? 600 }, (t) => set({ iterations: Math.max(1, Math.round(num(t.value) ?? 600)) }))),
+      tallyRows(layer),
       blocksRow(design, i, layer),
       emitterRows(layer, i),
     ];
     replaceChildren(body, rows);
   }
 
+  // count= (a numeric field: each row stands for that many units) and per= (one mark for
+  // k units of one category), with the rounding of a group's remainder or a partial mark
+  function tallyRows(layer) {
+    const numeric = (view.model.get("fields") || []).filter((f) => f.type === "numeric").map((f) => String(f.name));
+    const counts = [["", "1 per row"], ...numeric.map((n) => [n, n])];
+    if (layer.count != null && !numeric.includes(String(layer.count))) counts.push([String(layer.count), String(layer.count)]);
+    const per = layer.per ?? null;
+    return h("fieldset", { class: "ut-tally" }, h("legend", { text: "one mark for k units" }),
+      row("count", select("count", counts, layer.count ?? "", (v) => set({ count: v === "" ? null : v }))),
+      row("per", input("per", { type: "number", min: "0", step: "any", value: per ?? "", placeholder: "1 unit" }, (t) => {
+        const k = num(t.value);
+        set({ per: k != null && k > 0 ? k : null });
+      })),
+      per != null && row("rounding", select("rounding", [["largest-remainder", "largest remainder"], ["floor", "floor"], ["ceil", "ceil"], ["nearest", "nearest"]], layer.rounding || "largest-remainder", (v) => set({ rounding: v }))),
+      per != null && row("partial", input("partial", { type: "checkbox", checked: !!layer.partial }, (t) => set({ partial: t.checked }))));
+  }
   function blocksRow(design, i, layer) {
     const others = design.layers.filter((_, k) => k !== i);
     if (!others.length) return null;

@@ -8,9 +8,12 @@ import pandas as pd
 from ...design.encodings import (Encoded, capped_margin, check_column, continuous_values, encode,
                                  linear_extent, is_continuous, missing_warning, palette_for,
                                  unhashable)
+from ...design.bounds import MAX_UNITS
 from ...design.groups import mark_choice
+from ...design.tally import ink_clip
 from ...design.units import Units
 from . import positions
+from .tally import tally, too_many
 
 
 def layer_rows(df: pd.DataFrame, layer) -> pd.DataFrame:
@@ -44,11 +47,11 @@ def bind(df: pd.DataFrame, layers) -> Units:
     # numeric colours: one scale per column, shared by the layers (as the palettes are)
     domains = {c: _finite_range(df[c]) for c in color_cols if c not in palettes}
     parts, rows, sprites = [], [], {}
-    position, band, position_scales = positions.bind_positions(df, layers, layer_rows)
+    tallies = _tallies(df, layers)
+    position, band, position_scales = positions.bind_positions(
+        df, layers, lambda _, layer: tallies[layers.index(layer)].frame)
     for i, layer in enumerate(layers):
-        sub = layer_rows(df, layer)
-        if len(sub) == 0:
-            raise ValueError(f"layer {layer.name!r} has no rows to draw")
+        sub = tallies[i].frame   # one row per mark: the row it is encoded from
         e = layer.encodings
         enc: Encoded = encode(sub, size=e["size"], width=e["width"], height=e["height"],
                               color=e["color"], margin=e["margin"], order=e["order"],
@@ -77,13 +80,43 @@ def bind(df: pd.DataFrame, layers) -> Units:
         parts.append((i, half_w, half_h, enc, choice, sprite))
         rows.extend(sub.index.tolist())
     cat = lambda f: np.concatenate([f(p) for p in parts])  # noqa: E731
+    fraction = np.concatenate([t.fraction for t in tallies])
+    mark_of = [(layers[p[0]], m) for p in parts for m in p[4]]
+    clip = np.ones(len(fraction))
+    for k in np.nonzero(fraction < 1)[0]:   # a partial mark: clipped where its ink is the fraction
+        clip[k] = ink_clip(mark_of[k][0].marks[mark_of[k][1]], fraction[k])
+    offsets = np.cumsum([0] + [len(t.covered) for t in tallies[:-1]])
     return Units(rows=rows, layer=cat(lambda p: np.full(len(p[3].area), p[0])),
                  half_w=cat(lambda p: p[1]), half_h=cat(lambda p: p[2]),
                  area=cat(lambda p: p[3].area * p[3].width * p[3].height),
                  margin=cat(lambda p: p[3].margin), order=cat(lambda p: p[3].order),
                  colors=[c for p in parts for c in p[3].colors],
                  mark=cat(lambda p: p[4]), sprite=cat(lambda p: p[5]), sprites=list(sprites),
-                 position=position, band=band, position_scales=position_scales)
+                 position=position, band=band, position_scales=position_scales,
+                 amount=np.concatenate([t.amount for t in tallies]), fraction=fraction, clip=clip,
+                 covered=np.concatenate([t.covered for t in tallies]),
+                 cover_start=np.concatenate([t.start + o for t, o in zip(tallies, offsets)]),
+                 cover_stop=np.concatenate([t.stop + o for t, o in zip(tallies, offsets)]))
+
+
+def _tallies(df: pd.DataFrame, layers) -> list:
+    """Each layer's ``Tally`` (its marks); ValueError for a layer with nothing to draw or
+    for more marks than a chart lays out, naming a ``per=`` that would fit."""
+    out = []
+    for layer in layers:
+        sub = layer_rows(df, layer)
+        if len(sub) == 0:
+            raise ValueError(f"layer {layer.name!r} has no rows to draw")
+        out.append(tally(sub, layer))
+        if len(out[-1].frame) == 0:
+            raise ValueError(f"layer {layer.name!r} draws no marks: the units of its "
+                             f"{len(sub)} rows (count={layer.count!r}) round to none with "
+                             f"per={layer.per!r}, rounding={layer.rounding!r}; use a smaller "
+                             f"per=, rounding='ceil' or partial=True")
+    marks = sum(len(t.frame) for t in out)
+    if marks > MAX_UNITS:
+        raise too_many(marks, float(sum(t.amount.sum() for t in out)))
+    return out
 
 
 def _ranged(values: np.ndarray, series: pd.Series, span, squared: bool) -> np.ndarray:

@@ -50,14 +50,25 @@ def snapshot(units, layers, result) -> pd.DataFrame:
         "area": units.area * footprint(units.margin) ** 2 * scale ** 2})
 
 
+def unit_keys(layers, rows) -> list:
+    """``(layer, row, n)`` per unit: the n-th unit of its layer drawing that row (a row of a
+    ``count=`` column draws several), so a warm start matches each to its own old place."""
+    seen, out = {}, []
+    for key in zip(layers, rows):
+        n = seen[key] = seen.get(key, -1) + 1
+        out.append((*key, n))
+    return out
+
+
 def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
                  pinned: np.ndarray, pin_xy: np.ndarray):
     """``problem`` started from the snapshot ``previous``; ``pinned (P,)`` unit indices held
     at ``pin_xy (P, 2)`` count as taken room for the added marks."""
     p = problem
     names = [layer.name for layer in layers]
-    where = {(layer, row): k for k, (layer, row) in enumerate(zip(previous["layer"], previous["row"]))}
-    found = np.array([where.get((names[li], row), -1) for li, row in zip(units.layer, units.rows)])
+    where = {key: k for k, key in enumerate(unit_keys(previous["layer"], previous["row"]))}
+    found = np.array([where.get(key, -1) for key in
+                      unit_keys([names[li] for li in units.layer], units.rows)])
     kept = found >= 0
     if not kept.any():
         return problem
