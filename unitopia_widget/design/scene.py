@@ -21,7 +21,7 @@ from .marks import Mark, check_footprint
 from .positions import check_arrange, check_scale
 from .validate import check_choice, check_finite, closest, short
 
-SCHEMA, VERSION = "unitopia-design", 4
+SCHEMA, VERSION = "unitopia-design", 5
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order", "x", "y")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
