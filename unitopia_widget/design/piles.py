@@ -134,20 +134,28 @@ def label_spots(layers, canvas, arrange: str) -> list[tuple[str, float, float, f
         else:
             pile[1].append(layer.name)
     boxes = [(x, y, x + bw, y + bh) for x, y, bw, bh in (c.bbox(canvas) for c, _ in piles)]
+    w, h = canvas
     out = []
-    for (container, names), (x0, y0, x1, y1) in zip(piles, boxes):
-        if arrange == "rows":
-            room = max(x0 - PAD - LABEL_GAP, LABEL_FONT)
-            out.append((label_of(names), x0 - LABEL_GAP, (y0 + y1) / 2 + LABEL_FONT / 3, room, "end"))
+    for (_, names), (x0, y0, x1, y1) in zip(piles, boxes):
+        text = label_of(names)
+        if arrange == "rows":   # left of the pile; right of it when the canvas leaves no room
+            left, right = x0 - PAD - LABEL_GAP, w - x1 - PAD - LABEL_GAP
+            y = (y0 + y1) / 2 + LABEL_FONT / 3
+            fits = left >= min(right, len(text) * CHAR_W * LABEL_FONT)
+            out.append((text, x0 - LABEL_GAP, y, max(left, 0.0), "end") if fits
+                       else (text, x1 + LABEL_GAP, y, right, "start"))
+            continue
+        # as wide as the pile and half of the gaps beside it: no neighbour's label touches
+        left = max([b[2] for b in boxes if b[2] <= x0 and _overlap(b, (x0, y0, x1, y1))],
+                   default=x0 - PAD)
+        right = min([b[0] for b in boxes if b[0] >= x1 and _overlap(b, (x0, y0, x1, y1))],
+                    default=x1 + PAD)
+        room = (x1 - x0) + (x0 - left) / 2 + (right - x1) / 2 - 2
+        if y1 + LABEL_BAND <= h or y0 < LABEL_BAND:   # under the pile; over it when no room
+            y = min(y1 + LABEL_GAP + 0.8 * LABEL_FONT, h - 0.25 * LABEL_FONT)
         else:
-            # as wide as the pile and half of the gaps beside it: no neighbour's label touches
-            left = max([b[2] for b in boxes if b[2] <= x0 and _overlap(b, (x0, y0, x1, y1))],
-                       default=x0 - PAD)
-            right = min([b[0] for b in boxes if b[0] >= x1 and _overlap(b, (x0, y0, x1, y1))],
-                        default=x1 + PAD)
-            room = (x1 - x0) + (x0 - left) / 2 + (right - x1) / 2 - 2
-            out.append((label_of(names), (x0 + x1) / 2, y1 + LABEL_GAP + 0.8 * LABEL_FONT,
-                        room, "middle"))
+            y = y0 - LABEL_GAP - 0.25 * LABEL_FONT
+        out.append((text, (x0 + x1) / 2, y, room, "middle"))
     return out
 
 
