@@ -30,6 +30,7 @@ THUMBS = {
     "09-mark-groups": ["09-mark-groups.svg", "09-mark-set.svg"],
     "10-story": ["10-story-1.svg", "10-story-2.svg", "10-story-3.svg"],
     "12-beeswarm-waffle": ["12-beeswarm.svg", "12-waffle.svg"],
+    "13-isotype": ["13-isotype.svg", "13-isotype-columns.svg"],
 }
 
 

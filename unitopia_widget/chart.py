@@ -471,5 +471,5 @@ class Chart(Piling, HandControl):
         self._pins = pins
         self.page, self.scales, self._piles = page, scales, piles
         self._units = units
-        self._regroup()
+        self._regroup(warn=False)   # a design is taken as it is: piles edited by hand stay
         self._changed()

@@ -67,11 +67,11 @@ class Piling:
         self._piles = arrange
         self.bind_check()
 
-    def _regroup(self) -> None:
+    def _regroup(self, warn: bool = True) -> None:
         """After layers were added or their blocks changed: lay the piles out again when a
         layer has no container or blocks on a layer of another pile (or no longer on any
         of its own), so that layers that block on one another share a pile. Piles edited by
-        hand are kept, with a warning saying how to lay them out again."""
+        hand are kept (``warn``: with a warning saying how to lay them out again)."""
         if self._piles is None or self._units is None:
             return
         placed = [i for i, layer in enumerate(self.layers) if layer.container is not None]
@@ -92,7 +92,7 @@ class Piling:
             untouched = False
         if untouched:
             self._lay_piles(self._piles, keep_forces=False)
-        else:
+        elif warn:
             warnings.warn(f"the layers' piles were edited by hand, so they stay as they are "
                           f"although the layers' blocks (or a new layer) ask for other piles; "
                           f"set piles={self._piles!r} again to lay every layer out as a pile "

@@ -9,13 +9,15 @@ export function createPileLabels(stage) {
   svg.setAttribute("class", "ut-pile-labels");
   svg.setAttribute("preserveAspectRatio", "none");
   svg.setAttribute("aria-hidden", "true");
-  stage.el.insertBefore(svg, stage.tooltip);
 
-  /** Draws `labels` on a canvas of `size` [w, h] px. */
+  /** Draws `labels` on a canvas of `size` [w, h] px; with none, the <svg> leaves the stage. */
   function update(labels, size) {
-    svg.setAttribute("viewBox", `0 0 ${Number(size[0]) || 1} ${Number(size[1]) || 1}`);
+    const shown = Array.isArray(labels) ? labels : [];
     svg.replaceChildren();
-    for (const l of Array.isArray(labels) ? labels : []) {
+    if (!shown.length) return void svg.remove();
+    if (svg.parentNode !== stage.el) stage.el.insertBefore(svg, stage.tooltip);
+    svg.setAttribute("viewBox", `0 0 ${Number(size[0]) || 1} ${Number(size[1]) || 1}`);
+    for (const l of shown) {
       if (!l || !Number.isFinite(Number(l.x)) || !Number.isFinite(Number(l.y))) continue;
       const text = document.createElementNS(NS, "text");
       text.setAttribute("class", "pile-label");
