@@ -1,5 +1,6 @@
 """Piles: the layers of by= without a container of their own lie side by side, one labelled
 container per category, areas proportional to their totals (design/piles.py, piling.py)."""
+import io
 import json
 import re
 import xml.etree.ElementTree as ET
@@ -8,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from palmerpenguins import load_penguins
+from PIL import Image
 
 import unitopia_widget as uw
 from unitopia_widget.design.piles import LABEL_FONT
@@ -92,7 +94,7 @@ def test_pile_areas_are_proportional_to_their_totals_within_five_percent(penguin
         assert ratio.max() / ratio.min() < 1.05, (measure, ratio)
 
 
-def test_each_pile_is_labelled_under_it_touching_no_mark_and_no_other_label(penguins):
+def test_each_pile_is_labelled_under_it_touching_no_mark_and_no_other_label(penguins, tmp_path):
     svg = penguins.to_svg()
     found = labels(svg)
     assert [t for t, *_ in found] == ["Adelie", "Chinstrap", "Gentoo"]
@@ -104,8 +106,14 @@ def test_each_pile_is_labelled_under_it_touching_no_mark_and_no_other_label(peng
         assert not hits.any(), text
     for a, b in zip(found, found[1:]):
         assert a[3] < b[1]
-    png = penguins.to_png(1.0)
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    # the PNG draws the labels (dark text where the SVG puts them), the HTML page holds them
+    vx, vy = (float(v) for v in re.search(r'viewBox="([-\d.]+) ([-\d.]+)', svg).groups())
+    image = np.asarray(Image.open(io.BytesIO(penguins.to_png(1.0))).convert("RGBA"))
+    for text, x0, y0, x1, y1 in found:
+        box = image[int(y0 - vy):int(y1 - vy) + 1, int(x0 - vx):int(x1 - vx) + 1]
+        assert ((box[..., 3] > 128) & (box[..., :3].max(-1) < 160)).sum() > 15, text
+    penguins.save(tmp_path / "piles.html")
+    assert (tmp_path / "piles.html").read_text().count('class=\\"pile-label\\"') == 3
 
 
 def test_the_design_saves_the_piles_and_loads_them_back(penguins, tmp_path):
@@ -224,3 +232,27 @@ def test_the_widget_sends_the_pile_labels():
     assert all(x["anchor"] == "middle" and x["y"] > 150 for x in w.pile_labels)
     w.piles = None
     assert w.pile_labels == [] and re.search(r'"piles": null', json.dumps(w.design))
+
+
+def test_a_pile_of_one_large_mark_is_narrower_and_deep_enough_to_hold_it():
+    df = pd.DataFrame({"k": ["few"] + ["many"] * 200, "v": [4.0] + [1.0] * 200})
+    chart = uw.Chart(df, by="k", size="v", canvas=(400, 300), iterations=80)
+    few, many = (rect(layer) for layer in chart.layers)
+    assert few[2] - few[0] < many[2] - many[0]          # narrower, so deep enough
+    areas = [(b[2] - b[0]) * (b[3] - b[1]) for b in (few, many)]
+    assert areas[0] / areas[1] == pytest.approx(4 / 200, rel=1e-6)
+    chart.layout()
+    size = mark_boxes(chart).set_index("layer")
+    big = size.loc["few"]
+    small_ones = size.loc["many"]
+    # the one large mark does not cap the shared scale: the small marks keep their size
+    assert (big["x1"] - big["x0"]) == pytest.approx(2 * (small_ones["x1"] - small_ones["x0"]).median(), rel=0.02)
+    assert (small_ones["x1"] - small_ones["x0"]).median() > 10
+
+
+def test_more_categories_than_columns_fit_wrap_into_a_grid():
+    df = pd.DataFrame({"k": np.arange(120) % 40})
+    chart = uw.Chart(df, by="k", canvas=(400, 300))
+    assert chart.piles == "grid"
+    with pytest.raises(ValueError, match=r"piles='columns': 40 piles do not fit a 400 x 300 canvas"):
+        uw.Chart(df, by="k", canvas=(400, 300), piles="columns")

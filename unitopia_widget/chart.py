@@ -57,7 +57,8 @@ class Chart(Piling, HandControl):
     """A pictorial unit chart: ``Chart(df, mark="star", size="Duration", color="Task")``.
 
     See ``UnitoPia`` for the arguments; ``Chart`` takes the same ones. Pins, ``set_data``
-    and warm starts: ``hand.HandControl``.
+    and warm starts: ``hand.HandControl``; piles (``by=`` without a container):
+    ``piling.Piling``.
     ``scales="shared"`` (default): one global scale for all layers, so sizes
     stay comparable across layers; ``"independent"``: each layer its own scale,
     so each closed container fills (sizes compare only within a layer).
@@ -136,6 +137,8 @@ class Chart(Piling, HandControl):
                                **opts)
         self.bind_check()
         if by is not None and piles is not None and not placed:
+            if "piles" not in kwargs and not pile_mod.fits(len(self.layers), self.canvas, piles):
+                piles = "grid"   # more categories than columns fit: small multiples, wrapped
             self._lay_piles(piles, keep_forces=bool(opts.get("forces")))
 
     # --- layers -------------------------------------------------------------

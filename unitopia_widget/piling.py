@@ -51,9 +51,11 @@ class Piling:
         proportional to the footprint area of their marks at scale 1."""
         units = self._units
         foot = units.area * footprint(units.margin) ** 2
-        totals = [float(foot[np.isin(units.layer, g)].sum()) for g in groups]
+        mine = [np.isin(units.layer, g) for g in groups]
+        totals = [float(foot[m].sum()) for m in mine]
+        largest = [float(foot[m].max()) for m in mine]
         labels = [pile_mod.label_of([self.layers[i].name for i in g]) for g in groups]
-        return pile_mod.regions(totals, labels, self.canvas, arrange)
+        return pile_mod.regions(totals, largest, labels, self.canvas, arrange)
 
     def _lay_piles(self, arrange: str, keep_forces: bool) -> None:
         """Give every layer the container of its pile and, unless it has forces of its own

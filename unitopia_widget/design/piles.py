@@ -28,7 +28,9 @@ LABEL_BAND = LABEL_FONT + 2 * LABEL_GAP   # px kept under a pile (columns, grid)
 CHAR_W = 0.62         # a label's width per character in font sizes (DejaVu Sans, a little over)
 MAX_BAND = 0.3        # the widest share of the canvas the labels of rows take
 PAD = 8.0             # px kept free at the canvas' edges
-MIN_SIDE = 2.0        # px: the thinnest pile (a pile of a tiny total still holds its marks)
+MIN_SIDE = 2.0        # px: the thinnest pile
+COVER = 0.75          # the share of a pile its marks are expected to cover (sizes the thinnest)
+ROOMY = 1.0           # a pile at least as wide as its largest mark's footprint disc
 
 
 def check_piles(value):
@@ -72,9 +74,12 @@ def label_of(names) -> str:
     return " / ".join(names)
 
 
-def regions(totals, labels, canvas, arrange: str) -> list[Container]:
-    """One rectangle per pile, areas proportional to ``totals`` (``(K,)``, > 0), leaving
-    the label bands free; ``labels`` (K texts) size the band of rows."""
+def regions(totals, largest, labels, canvas, arrange: str) -> list[Container]:
+    """One rectangle per pile, areas proportional to ``totals`` (``(K,)``, > 0: the
+    footprint area of each pile's marks at scale 1), leaving the label bands free. A pile
+    too thin for its largest mark (``largest (K,)``, footprint area at scale 1) at the scale
+    the piles will take is made narrower and deeper instead, keeping its area; ``labels``
+    (K texts) size the band of rows."""
     totals = np.asarray(totals, dtype=float)
     if not (totals.ndim == 1 and len(totals) and np.isfinite(totals).all() and (totals > 0).all()):
         raise ValueError(f"piles: every pile needs a positive, finite total, got {totals!r:.80}")
@@ -86,37 +91,78 @@ def regions(totals, labels, canvas, arrange: str) -> list[Container]:
         side = (w - 2 * PAD - (k - 1) * gap) / k
         tall = h - 2 * PAD - LABEL_BAND
         _fits(side, tall, k, canvas, arrange)
-        base = PAD + tall
-        return [Container.rect(PAD + i * (side + gap), base - max(tall * s, MIN_SIDE), side,
-                               max(tall * s, MIN_SIDE)) for i, s in enumerate(share)]
+        need = _need(largest, side * tall, totals)
+        out = []
+        for i, s in enumerate(share):   # bottoms aligned, each centred in its slot
+            across, deep = _shape(s * side * tall, side, tall, need[i])
+            out.append(Container.rect(PAD + i * (side + gap) + (side - across) / 2,
+                                      PAD + tall - deep, across, deep))
+        return out
     if arrange == "rows":
         gap = min(max(0.15 * (h - 2 * PAD) / k, 4.0), 24.0)
         band = min(max(len(t) for t in labels) * CHAR_W * LABEL_FONT, MAX_BAND * w) + 2 * LABEL_GAP
         side = (h - 2 * PAD - (k - 1) * gap) / k
         wide = w - 2 * PAD - band
         _fits(wide, side, k, canvas, arrange)
-        return [Container.rect(PAD + band, PAD + i * (side + gap), max(wide * s, MIN_SIDE), side)
-                for i, s in enumerate(share)]
+        need = _need(largest, side * wide, totals)
+        out = []
+        for i, s in enumerate(share):   # left edges aligned, each centred in its slot
+            across, long = _shape(s * side * wide, side, wide, need[i])
+            out.append(Container.rect(PAD + band, PAD + i * (side + gap) + (side - across) / 2,
+                                      long, across))
+        return out
     cols = max(1, min(k, round(math.sqrt(k * w / h))))
     rows = math.ceil(k / cols)
     gap = 12.0
     cell_w = (w - 2 * PAD - (cols - 1) * gap) / cols
     cell_h = (h - 2 * PAD - (rows - 1) * gap) / rows - LABEL_BAND
     _fits(cell_w, cell_h, k, canvas, arrange)
+    need = _need(largest, cell_w * cell_h, totals)
     out = []
-    for i, s in enumerate(share):
+    for i, s in enumerate(share):   # the cell's shape scaled down; at the foot of the cell
         r, c = divmod(i, cols)
-        pw, ph = max(cell_w * math.sqrt(s), MIN_SIDE), max(cell_h * math.sqrt(s), MIN_SIDE)
+        pw, ph = cell_w * math.sqrt(s), cell_h * math.sqrt(s)
+        if pw < need[i]:
+            pw, ph = _shape(pw * ph, cell_w, cell_h, need[i])
+        elif ph < need[i]:
+            ph, pw = _shape(pw * ph, cell_h, cell_w, need[i])
         x0, y0 = PAD + c * (cell_w + gap), PAD + r * (cell_h + LABEL_BAND + gap)
         out.append(Container.rect(x0 + (cell_w - pw) / 2, y0 + cell_h - ph, pw, ph))
     return out
 
 
+def fits(count: int, canvas, arrange: str) -> bool:
+    """Do ``count`` piles of ``arrange`` fit ``canvas`` (one-letter labels)?"""
+    try:
+        regions(np.ones(count), np.zeros(count), ["x"] * count, canvas, arrange)
+    except ValueError:
+        return False
+    return True
+
+
+def _need(largest, full: float, totals: np.ndarray) -> np.ndarray:
+    """``(K,)`` px: the extent each pile needs for its largest mark at the scale at which
+    the largest pile (``full`` px^2) is ``COVER`` covered."""
+    scale = math.sqrt(COVER * full / totals.max())
+    return 2 * np.sqrt(np.asarray(largest, dtype=float) / math.pi) * scale * ROOMY
+
+
+def _shape(area: float, across: float, along: float, need: float) -> tuple[float, float]:
+    """``(across, along)`` of a pile of ``area`` px^2 in a slot ``across`` wide and
+    ``along`` deep: the slot's width and the depth that gives the area, unless that is less
+    than ``need``; then ``need`` deep and narrower (never narrower than ``need``)."""
+    deep = area / across
+    if deep >= need:
+        return across, max(deep, MIN_SIDE)
+    deep = min(need, along)
+    return min(max(area / deep, need, MIN_SIDE), across), deep
+
+
 def _fits(side_a: float, side_b: float, k: int, canvas, arrange: str) -> None:
     if min(side_a, side_b) < 4 * MIN_SIDE:
         raise ValueError(f"piles={arrange!r}: {k} piles do not fit a {canvas[0]:g} x "
-                         f"{canvas[1]:g} canvas; make the canvas larger, use another "
-                         f"arrangement (piles='grid' wraps them) or group the categories")
+                         f"{canvas[1]:g} canvas; make the canvas larger, group the categories, "
+                         f"use piles='grid' (wrapped) or piles=None (the layers packed together)")
 
 
 def label_spots(layers, canvas, arrange: str) -> list[tuple[str, float, float, float, str]]:

@@ -50,7 +50,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
-    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
+    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value, in the colour legend's order),
+    ``piles`` (how the layers of ``by`` lie when they have no container, emitter, x or y
+    of their own: ``"columns"``, the default, side by side and pulled down, a unit column
+    chart; ``"rows"``; ``"grid"``; each pile a labelled rectangle whose area is its total;
+    None: together on the whole canvas),
     ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column),
     ``margin_of`` ("median", the default: a mark larger than its layer's median mark keeps
     the median mark's gap; "own": each mark's own size however large), ``order`` (emission
