@@ -256,3 +256,18 @@ def test_more_categories_than_columns_fit_wrap_into_a_grid():
     assert chart.piles == "grid"
     with pytest.raises(ValueError, match=r"piles='columns': 40 piles do not fit a 400 x 300 canvas"):
         uw.Chart(df, by="k", canvas=(400, 300), piles="columns")
+
+
+def test_a_grid_laid_out_again_in_other_piles_stands_in_the_new_cells_on_a_warm_run():
+    k = np.repeat(["cats", "dogs"], [10, 25])
+    chart = uw.Chart(pd.DataFrame({"k": k}), mark="square", by="k", piles="rows",
+                     arrange="grid", canvas=(500, 300))
+    chart.layout()
+    chart.piles = "columns"
+    table = chart.layout()             # warm: starts from the rows' layout
+    for layer in chart.layers:
+        x0, y0, x1, y1 = rect(layer)
+        mine = table[table["layer"] == layer.name]
+        assert mine["x"].between(x0, x1).all() and mine["y"].between(y0, y1).all()
+        steps = np.diff(np.sort(mine["x"].unique()))
+        assert np.allclose(steps, steps[0], rtol=1e-3)   # still a lattice
