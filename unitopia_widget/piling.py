@@ -27,18 +27,13 @@ class Piling:
     @piles.setter
     def piles(self, value):
         arrange = pile_mod.check_piles(value)
-        before = self.design()
-        try:
-            if arrange is None:
-                for layer in self.layers:
-                    layer._apply({"container": None, "forces": self._own_forces(layer)})
-                self._piles = None
-                self.bind_check()
-            else:
-                self._lay_piles(arrange, keep_forces=False)
-        except Exception:
-            self.apply_design(before)   # a refused arrangement changes nothing
-            raise
+        if arrange is None:
+            for layer in self.layers:
+                layer._apply({"container": None, "forces": self._own_forces(layer)})
+            self._piles = None
+            self.bind_check()
+        else:
+            self._lay_piles(arrange, keep_forces=False)   # all or nothing
         self._changed()
 
     def _own_forces(self, layer) -> list:
@@ -59,15 +54,24 @@ class Piling:
 
     def _lay_piles(self, arrange: str, keep_forces: bool) -> None:
         """Give every layer the container of its pile and, unless it has forces of its own
-        (``keep_forces``: all it has are its own), the pile's pull."""
+        (``keep_forces``: all it has are its own), the pile's pull; a refused layout (a pile
+        too small for its marks, too many piles) changes nothing."""
         groups = pile_mod.groups(self.layers)
-        for g, rect in zip(groups, self._pile_regions(arrange, groups)):
+        rects = self._pile_regions(arrange, groups)
+        before = [(layer, {"container": layer.container, "forces": layer.forces})
+                  for layer in self.layers]
+        for g, rect in zip(groups, rects):
             for i in g:
                 layer = self.layers[i]
                 own = list(layer.forces) if keep_forces else self._own_forces(layer)
                 layer._apply({"container": rect, "forces": own or [pile_mod.pull(arrange)]})
+        try:
+            self.bind_check()
+        except Exception:   # refused (a pile too small for its marks): nothing changes
+            for layer, fields in before:
+                layer._apply(fields)
+            raise
         self._piles = arrange
-        self.bind_check()
 
     def _regroup(self, warn: bool = True) -> None:
         """After layers were added or their blocks changed: lay the piles out again when a
@@ -79,7 +83,8 @@ class Piling:
         placed = [i for i, layer in enumerate(self.layers) if layer.container is not None]
         shared: list[list[int]] = []   # layers grouped by the container they share
         for i in placed:
-            group = next((g for g in shared if self.layers[g[0]].container == self.layers[i].container), None)
+            mine = self.layers[i].container
+            group = next((g for g in shared if self.layers[g[0]].container == mine), None)
             if group is None:
                 shared.append([i])
             else:

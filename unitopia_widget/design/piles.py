@@ -23,7 +23,7 @@ from .validate import check_choice
 ARRANGEMENTS = ("columns", "rows", "grid")
 PULL = {"columns": 90.0, "rows": 180.0, "grid": 90.0}   # degrees: down, left, down
 LABEL_FONT = 12.0     # px
-LABEL_GAP = 6.0       # px between a pile and its label
+LABEL_GAP = 8.0       # px between a pile and its label (marks may poke out of it by a pixel or two)
 LABEL_BAND = LABEL_FONT + 2 * LABEL_GAP   # px kept under a pile (columns, grid)
 CHAR_W = 0.62         # a label's width per character in font sizes (DejaVu Sans, a little over)
 MAX_BAND = 0.3        # the widest share of the canvas the labels of rows take

@@ -11,6 +11,7 @@ import pytest
 from test_frontend import STAGE, mount, next_paint
 
 import unitopia_widget as uw
+from unitopia_widget.design.piles import LABEL_GAP
 
 pytestmark = pytest.mark.browser
 
@@ -42,4 +43,4 @@ def test_the_piles_containers_and_labels_are_drawn_under_each_pile(page):
                   [json.loads(json.dumps(w.design)), w.pile_labels])
     next_paint(page)
     box = texts.nth(0).bounding_box()
-    assert box["y"] == pytest.approx(stage["y"] + (300 + 6) * k, abs=4)
+    assert box["y"] == pytest.approx(stage["y"] + (300 + LABEL_GAP) * k, abs=4)
