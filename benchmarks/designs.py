@@ -106,7 +106,7 @@ def design_bags(scales="shared"):
     a = uw.Container.polygon(blob(220, 330, 170, 220, 0.04, 7))
     b = uw.Container.polygon(blob(590, 330, 170, 220, 0.04, 8))
     kw = {} if scales == "shared" else {"scales": scales}   # the default, spelled out or not
-    w = uw.UnitoPia(df, mark=icon("bag"), size="price", canvas=(W, H), seed=0, by="bag",
+    w = uw.UnitoPia(df, mark=icon("bag"), size="price", canvas=(W, H), seed=0, by="bag", piles=None,
                     boundary="closed", **kw)
     w.layer("a").set(container=a)
     w.layer("b").set(container=b)
@@ -315,7 +315,7 @@ def design_bowls():
     k = np.repeat(np.arange(9), 20)
     df = pd.DataFrame({"layer": k, "v": lognormal(180, 10, 18)})
     bowls = [bowl(cx) for cx in (140, 400, 660)]
-    w = uw.UnitoPia(df, mark="circle", size="v", by="layer", canvas=(W, H), seed=0,
+    w = uw.UnitoPia(df, mark="circle", size="v", by="layer", canvas=(W, H), seed=0, piles=None,
                     forces=[uw.DirectionalForce(90)], boundary="open")
     for j in range(9):
         w.layer(str(j)).set(container=bowls[j // 3], blocks=[str(j - 1)] if j % 3 else [])

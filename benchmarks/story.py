@@ -23,7 +23,7 @@ def main(formats=(".gif", ".mp4", ".html")) -> None:
     rng = np.random.default_rng(0)
     df = pd.DataFrame({"v": rng.uniform(1, 10, 1000), "g": rng.choice(["a", "b", "c"], 1000)})
     look = dict(mark="star", size="v", color="g", canvas=(800, 500), iterations=40, legend=False)
-    piles = uw.Chart(df, by="g", **look)
+    piles = uw.Chart(df, by="g", piles=None, **look)
     for i, layer in enumerate(piles.layers):
         layer.set(container=uw.Container.rect(20 + i * 260, 20, 240, 460))
     slides = [uw.Chart(df, container=uw.Container.ellipse(400, 250, 240, 240), **look), piles,

@@ -31,6 +31,7 @@ THUMBS = {
     "10-story": ["10-story-1.svg", "10-story-2.svg", "10-story-3.svg"],
     "12-beeswarm-waffle": ["12-beeswarm.svg", "12-waffle.svg"],
     "13-isotype": ["13-isotype.svg"],
+    "14-piles": ["14-piles.svg", "14-piles-columns.svg"],
 }
 
 

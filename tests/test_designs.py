@@ -123,7 +123,7 @@ def test_independent_scales_fill_both_containers():
     boxes = {"a": (20, 20, 160, 160), "b": (220, 20, 160, 160)}
 
     def chart(scales):
-        c = uw.Chart(df, by="g", canvas=(400, 200), boundary="closed", iterations=200,
+        c = uw.Chart(df, by="g", canvas=(400, 200), boundary="closed", iterations=200, piles=None,
                      scales=scales)
         for name, box in boxes.items():
             c.layer(name).set(container=uw.Container.rect(*box))

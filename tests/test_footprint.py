@@ -12,6 +12,7 @@ import torch
 from PIL import Image, ImageDraw
 
 import unitopia_widget as uw
+from unitopia_widget.design.scene import VERSION
 from ink import ink_metrics
 
 ELLIPSE = (200, 150, 180, 130)
@@ -47,7 +48,7 @@ def test_footprint_is_validated_saved_and_old_designs_keep_ink():
         uw.Chart(df, footprint="holes")
     chart = uw.Chart(df, mark=RING, footprint="ink")
     design = json.loads(json.dumps(chart.design()))
-    assert design["version"] == 4 and design["layers"][0]["footprint"] == "ink"
+    assert design["version"] == VERSION and design["layers"][0]["footprint"] == "ink"
     other = uw.Chart(df)
     assert other.layers[0].footprint == "silhouette"
     other.apply_design(design)

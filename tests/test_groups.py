@@ -13,6 +13,7 @@ import pytest
 import torch
 
 import unitopia_widget as uw
+from unitopia_widget.design.scene import VERSION
 from ink import ink_metrics
 from unitopia_widget.layout.step.atlas import SpriteAtlas
 from unitopia_widget.layout.step.raster import (SPRITE_SIDE, RasterGrid, accumulate, plan_groups, render_samples,
@@ -158,7 +159,7 @@ def test_design_json_round_trip_version_4():
     chart = uw.Chart(df, mark={"x": "fa:lemon", "y": str(DATA / "class_styled.svg"), "z": "star", 3: "drop"},
                      shape="kind", size="v")
     design = json.loads(json.dumps(chart.design()))
-    assert design["version"] == 4
+    assert design["version"] == VERSION
     layer = design["layers"][0]
     assert layer["footprint"] == "silhouette" and layer["margin_of"] == "median"
     assert layer["mark_keys"] == ["x", "y", "z", 3] and layer["encodings"]["shape"] == "kind"
@@ -181,7 +182,7 @@ def test_version_1_designs_still_load():
     chart.apply_design(v1)
     assert chart.layers[0].marks == [uw.Mark.shape("heart")] and chart.layers[0].encodings["shape"] is None
     saved = chart.design()
-    assert saved["version"] == 4 and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
+    assert saved["version"] == VERSION and saved["layers"][0]["marks"] == [v1["layers"][0]["mark"]]
     assert saved["layers"][0]["footprint"] == "ink"      # as version 1 and 2 laid it out
     assert saved["layers"][0]["margin_of"] == "own"      # as versions 1 to 3 laid it out
     edited = chart.design()   # an editor that knows only version 1 sets "mark": it wins

@@ -37,6 +37,20 @@ def test_quick_start_runs_with_the_shipped_data(tmp_path, monkeypatch):
     assert (tmp_path / "chart.svg").read_text().lstrip().startswith(("<svg", "<?xml"))
 
 
+def test_the_pile_chart_runs_on_the_penguins(tmp_path, monkeypatch, one_thread):
+    blocks = re.findall(r"```python\n(.*?)```", section("Piles by category"), re.S)
+    assert "load_penguins()" in blocks[0] and "by=\"species\"" in blocks[0]
+    monkeypatch.chdir(tmp_path)
+    scope: dict = {"uw": uw}
+    with pytest.warns(UserWarning, match="dropna=True"):
+        exec(blocks[0], scope)
+    w = scope["w"]
+    assert w.piles == "columns" and [layer.name for layer in w.layers] == ["Adelie", "Chinstrap", "Gentoo"]
+    assert w.to_svg().count('class="pile-label"') == 3
+    assert (tmp_path / "penguins.png").read_bytes()[:4] == b"\x89PNG"
+    assert (ROOT / "docs" / "piles.png").exists(), "the picture the README shows"
+
+
 @pytest.mark.parametrize("path", [README, DOCS / "getting-started.md"], ids=["README", "docs"])
 def test_install_commands_need_no_root_node_or_chromium(path):
     commands = re.findall(r"```bash\n(.*?)```", section("Install", path), re.S)[0]

@@ -53,7 +53,7 @@ def poll(condition, timeout=30.0):
 
 def sketched_widget(df, iterations=20) -> uw.UnitoPia:
     """A widget whose design holds hand-drawn things: a sketch mark, a cut, a stroke emitter."""
-    w = uw.UnitoPia(df, by="k", size="v", mark={"a": SKETCH, "b": CIRCLE}, iterations=iterations,
+    w = uw.UnitoPia(df, by="k", size="v", mark={"a": SKETCH, "b": CIRCLE}, iterations=iterations, piles=None,
                     canvas=(300, 200))
     w.layer("a").set(container=uw.Container.rect(10, 10, 280, 180).cut([[20, 20], [120, 90]], 6),
                      emitter=uw.CurveEmitter.from_stroke([[20, 150], [150, 60], [280, 150]]))
@@ -337,7 +337,7 @@ def test_a_front_end_edit_while_running_does_not_lose_the_design(df):
 
 
 def test_the_export_after_a_design_change_matches_the_layout_or_says_it_is_stale(df):
-    chart = uw.Chart(df, by="k", size="v", mark=CIRCLE, canvas=(300, 200), iterations=20)
+    chart = uw.Chart(df, by="k", size="v", mark=CIRCLE, canvas=(300, 200), iterations=20, piles=None)
     chart.layer("a").set(container=uw.Container.rect(0, 0, 150, 200))
     chart.layer("b").set(container=uw.Container.rect(150, 0, 150, 200))
     chart.layout(cancel=lambda: True)

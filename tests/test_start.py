@@ -199,7 +199,7 @@ def test_unequal_sizes_settle_in_about_as_many_iterations_as_equal_ones():
 
 def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
     df = pd.DataFrame({"bag": ["a"] * 20 + ["b"] * 4, "v": lognormal(24, 20, 2)})
-    chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed")
+    chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed", piles=None)
     chart.layer("a").set(container=uw.Container.rect(10, 10, 180, 280))
     chart.layer("b").set(container=uw.Container.rect(210, 10, 180, 280))
     units = bind(chart.df, chart.layers)
@@ -216,7 +216,7 @@ def test_a_shared_scale_has_no_room_while_one_of_its_containers_is_full():
 def test_marks_too_few_to_fill_a_closed_container_spread_over_it():
     # a shared scale held by the fuller bag: the 12 marks of bag b cover a fifth of it
     df = pd.DataFrame({"bag": ["a"] * 60 + ["b"] * 12, "v": lognormal(72, 20, 2)})
-    chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed")
+    chart = uw.Chart(df, size="v", by="bag", canvas=(400, 300), boundary="closed", piles=None)
     chart.layer("a").set(container=uw.Container.rect(10, 10, 180, 280))
     chart.layer("b").set(container=uw.Container.rect(210, 10, 180, 280))
     problem, units, center, radius = start_of(chart)

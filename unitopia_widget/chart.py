@@ -16,13 +16,15 @@ from .layout import engine
 from .layout.prepare.bind import bind
 from .layout.prepare.tally import mark_titles
 from .layout.prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, overfilled
-from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, titles as row_titles, tooltip_fields,
-                               warn_small_marks)
+from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, sorted_unique,
+                               titles as row_titles, tooltip_fields, warn_small_marks)
 from .output import animation, html
 from .output.files import atomic_write, write_json
 from .output.publish import export_png, export_svg
 from .hand import HandControl
+from .piling import Piling
 from .design.page import PageOptions
+from .design import piles as pile_mod
 from .design.scene import SCHEMA, VERSION, Layer, block_order, check_design_header
 from .design.files import design_code, load_design
 from .design.positions import POSITION_CHANNELS, invalid_position_rows
@@ -37,7 +39,8 @@ ARGUMENTS = ("mark", "size", "width", "height", "color", "shape", "by", "margin"
              "margin_of", "canvas", "background", "seed", "device", "iterations", "dropna",
              "scales", "title", "caption",
              "legend", "tooltip", "size_range", "width_range", "height_range", "x", "y",
-             "x_scale", "y_scale", "arrange", "count", "per", "rounding", "partial")
+             "x_scale", "y_scale", "arrange", "count", "per", "rounding", "partial", "piles")
+PLACING = ("container", "emitter", "x", "y")   # arguments that place by= layers: no piles
 MAX_LAYERS = 100   # each layer renders its own sprites and fields: by= a column of ids is refused
 MIN_MARK_AREA = 4.0   # canvas px^2 of container per mark: below, marks shrink out of sight
 MAX_SPREAD = 1e6   # largest / smallest mark extent: beyond, float32 rendering loses the small ones
@@ -51,11 +54,12 @@ def check_kwargs(owner: str, kwargs: dict, allowed) -> None:
                             f"{closest(key, allowed)}")
 
 
-class Chart(HandControl):
+class Chart(Piling, HandControl):
     """A pictorial unit chart: ``Chart(df, mark="star", size="Duration", color="Task")``.
 
     See ``UnitoPia`` for the arguments; ``Chart`` takes the same ones. Pins, ``set_data``
-    and warm starts: ``hand.HandControl``.
+    and warm starts: ``hand.HandControl``; piles (``by=`` without a container):
+    ``piling.Piling``.
     ``scales="shared"`` (default): one global scale for all layers, so sizes
     stay comparable across layers; ``"independent"``: each layer its own scale,
     so each closed container fills (sizes compare only within a layer).
@@ -81,6 +85,13 @@ class Chart(HandControl):
         tooltip_fields(df, self._tooltip)
         self.device = engine.pick_device(opts.pop("device", None))
         by = opts.pop("by", None)
+        piles = pile_mod.check_piles(opts.pop("piles", "columns"))
+        # piles lay out the layers of by= that have no place of their own
+        placed = [k for k in PLACING if opts.get(k) is not None]
+        if "piles" in kwargs and piles is not None and (by is None or placed):
+            why = "by= is not set" if by is None else f"{placed[0]}= places the layers already"
+            raise ValueError(f"piles={piles!r} lays out the layers of by=<column> as piles, but "
+                             f"{why}; pass by= without {', '.join(PLACING)}, or leave piles out")
         mark = parse_marks(opts.pop("mark", "circle"))   # Marks shared by the layers: renders cached once
         shape = opts.get("shape")
         categories = {c: v for c, v in (("by", by), ("shape", shape)) if v is not None}
@@ -109,6 +120,7 @@ class Chart(HandControl):
         self.layers: list[Layer] = []
         self.laid: engine.Layout | None = None   # the last run's layout
         self._units = None
+        self._piles = None
         if by is None:
             self.add_layer("layer-1", mark=pick_mark(mark, None, shape), **opts)
         else:
@@ -121,14 +133,14 @@ class Chart(HandControl):
                 raise ValueError(f"by={by!r} has {len(values)} distinct values, one layer each; at "
                                  f"most {MAX_LAYERS} layers are supported: group or bin the column "
                                  f"first, or use color={by!r} instead")
-            try:
-                values = sorted(values)
-            except TypeError:
-                pass
-            for v in values:
+            for v in sorted_unique(df[by]):   # the colour legend's order of the categories
                 self.add_layer(str(v), mark=pick_mark(mark, v, shape), rows=rows_of(df, by, v),
                                **opts)
         self.bind_check()
+        if by is not None and piles is not None and not placed:
+            if "piles" not in kwargs and not pile_mod.fits(len(self.layers), self.canvas, piles):
+                piles = "grid"   # more categories than columns fit: small multiples, wrapped
+            self._lay_piles(piles, keep_forces=bool(opts.get("forces")))
 
     # --- layers -------------------------------------------------------------
     def add_layer(self, name: str, data: pd.DataFrame | None = None, rows=None, **fields) -> Layer:
@@ -144,6 +156,7 @@ class Chart(HandControl):
         self.layers.append(layer)
         try:
             self._recheck()
+            self._regroup()
         except Exception:
             self.layers.remove(layer)
             raise
@@ -191,6 +204,8 @@ class Chart(HandControl):
             if names.count(layer.name) > 1:
                 raise ValueError(f"a layer named {layer.name!r} exists already")
         self._recheck()   # raising here makes Layer.set undo the change
+        if "blocks" in keys:
+            self._regroup()
         self._changed()
 
     def _recheck(self) -> None:
@@ -397,7 +412,8 @@ class Chart(HandControl):
         """The design JSON (docs/protocol.md)."""
         return {"schema": SCHEMA, "version": VERSION, "canvas": list(self.canvas),
                 "background": None if self.background is None else {"image": self.background},
-                "seed": self.seed, "scales": self.scales, **self.page.to_json(),
+                "seed": self.seed, "scales": self.scales, "piles": self._piles,
+                **self.page.to_json(),
                 "layers": [layer.to_json() for layer in self.layers], **self._pins_json()}
 
     @classmethod
@@ -426,6 +442,10 @@ class Chart(HandControl):
         canvas = check_canvas(d.get("canvas", self.canvas))
         seed = check_seed(d.get("seed", self.seed))
         scales = check_scales(d.get("scales", "shared"), "design: scales")
+        try:
+            piles = pile_mod.check_piles(d.get("piles"))
+        except ValueError as exc:
+            raise ValueError(f"design: {exc}") from None
         background = d.get("background")
         if background and not (isinstance(background, dict) and isinstance(background.get("image"), str)
                                and background["image"].lstrip()[:5].lower() == "data:"):
@@ -458,6 +478,7 @@ class Chart(HandControl):
             layer._on_change = self._layer_changed
         self.canvas, self.layers, self.background, self.seed = canvas, layers, background, seed
         self._pins = pins
-        self.page, self.scales = page, scales
+        self.page, self.scales, self._piles = page, scales, piles
         self._units = units
+        self._regroup(warn=False)   # a design is taken as it is: piles edited by hand stay
         self._changed()

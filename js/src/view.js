@@ -19,6 +19,7 @@ import { createSettingsPanel } from "./panels/settings.js";
 import { createFieldsPanel } from "./panels/fields.js";
 import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
+import { createPileLabels } from "./pile-labels.js";
 import { copyText, download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
 import { createReplay } from "./replay-control.js";
@@ -95,6 +96,8 @@ export function renderView({ model, el, signal }) {
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
+  const pileLabels = createPileLabels(stage);
+  const drawLabels = () => pileLabels.update(list(model, "pile_labels"), readDesign(model).canvas || [1, 1]);
   const pageText = createPageText(stage.wrap);
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
   foldPanels(panels);
@@ -162,6 +165,7 @@ export function renderView({ model, el, signal }) {
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     pageText.update(design);
+    drawLabels();
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -214,6 +218,7 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
+  onModel(model, ["change:pile_labels"], drawLabels, signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

@@ -22,7 +22,7 @@ from .positions import check_arrange, check_scale
 from .tally import check_count, check_partial, check_per, check_rounding
 from .validate import check_choice, check_finite, closest, short
 
-SCHEMA, VERSION = "unitopia-design", 4
+SCHEMA, VERSION = "unitopia-design", 5
 CHANNELS = ("size", "width", "height", "color", "shape", "margin", "order", "x", "y")
 MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")

@@ -55,7 +55,16 @@ def _v3_to_v4(d: dict) -> dict:
     return d
 
 
-_STEPS = {2: _v2_to_v3, 3: _v3_to_v4}   # version v -> the step to v + 1 (version 1 reads as 2)
+def _v4_to_v5(d: dict) -> dict:
+    """Version 5: ``piles`` says how the layers lie as labelled piles; the layers of
+    ``by=`` without a container of their own became piles, where before they shared the
+    whole canvas. An older design keeps its containers and gets ``piles: null`` (no pile
+    labels), so its layers lie where they lay."""
+    d["piles"] = None
+    return d
+
+
+_STEPS = {2: _v2_to_v3, 3: _v3_to_v4, 4: _v4_to_v5}   # version v -> the step to v + 1 (version 1 reads as 2)
 
 
 def upgrade(d: dict) -> dict:

@@ -24,6 +24,7 @@ from .keep import DesignFile, KeptDesign
 from .pins import Pinning
 from .notebook import StaticDisplay
 from ..output.publish import legend_image
+from ..output.pile_labels import labels as pile_labels
 from .runner import Runner
 from ..layout.prepare.problem import Cancelled
 
@@ -49,7 +50,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     or ``by``), ``shape`` (a categorical column picking each row's mark),
     ``size`` (area proportional to a column), ``width``/``height`` (that extent
     proportional), ``size_range``/``width_range``/``height_range`` (``(min_px, max_px)``:
-    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value),
+    the values map linearly onto that range of extents instead, not data-true), ``color`` (a column or CSS colour; a multi-colour mark is tinted, keeping its shading), ``by`` (one layer per value, in the colour legend's order),
+    ``piles`` (how the layers of ``by`` lie when they have no container, emitter, x or y
+    of their own: ``"columns"``, the default, side by side and pulled down, a unit column
+    chart; ``"rows"``; ``"grid"``; each pile a labelled rectangle whose area is its total;
+    None: together on the whole canvas),
     ``count`` (a column: each row stands for that many units), ``per`` (one mark for that
     many units of one category), ``rounding`` ("largest-remainder", the default, "floor",
     "ceil", "nearest") and ``partial`` (True: each category's remainder drawn as one clipped
@@ -93,6 +98,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     error = t.Unicode("").tag(sync=True)               #: last error message, "" if none
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend_image = t.Dict().tag(sync=True)             #: {} or {"src": svg data URL, "width", "height"}
+    pile_labels = t.List(t.Dict()).tag(sync=True)      #: [{"text", "x", "y", "anchor"}] of the piles
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
     pinned_units = t.List(t.Int()).tag(sync=True)      #: unit indices the pins hold
     _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
@@ -196,6 +202,9 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     caption = property(lambda self: self._chart.caption,
                        lambda self, v: setattr(self._chart, "caption", v),
                        doc="The caption drawn under the chart in the export.")
+    piles = property(lambda self: self._chart.piles,
+                     lambda self, v: setattr(self._chart, "piles", v),
+                     doc="How the layers lie as labelled piles (see ``Chart.piles``).")
     legend = property(lambda self: self._chart.legend,
                       lambda self, v: setattr(self._chart, "legend", v),
                       doc='{"visible": bool, "position": ...}; set True, False, a position or '
@@ -325,6 +334,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         self._quiet(legend_image={} if image is None else {
             "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
             "width": image[1], "height": image[2]})
+        try:
+            labels = pile_labels(self._chart.layers, self._chart.canvas, self._chart.piles)
+        except ValueError:   # a container off the canvas: refused by the next run, no labels
+            labels = []
+        self._quiet(pile_labels=labels)
         if not static:
             return
         try:
@@ -469,7 +483,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
 
 STOP_PATIENCE = 0.25   # s stop() waits for a run to end before letting it go
 
-LAYOUT_FREE = ("title", "caption", "legend")   # design keys that do not change the layout
+LAYOUT_FREE = ("title", "caption", "legend", "piles")   # design keys that do not change the layout
 
 
 def _layout_key(design: dict) -> dict:

@@ -12,6 +12,7 @@ from .composite import chart_png
 from .export import to_svg
 from .axes import axes_svg
 from .outline import outlines
+from .pile_labels import labels_svg
 from ..io.svgsafe import sanitize_svg
 from .page import compose
 
@@ -75,6 +76,7 @@ def _drawing(chart, units, legend, title, caption, outline, axes) -> tuple:
                          "bind a layer's x= or y= to a column and run the layout again")
     page = compose(chart.canvas, sections(chart, units) if show else None, position, title, caption)
     under = (outlines(chart.layers, chart.canvas) if outline else "") \
-        + (axes_svg(drawn, chart.canvas) if axes else "")
+        + (axes_svg(drawn, chart.canvas) if axes else "") \
+        + labels_svg(chart.layers, chart.canvas, chart.piles)
     return (chart.canvas, chart.laid.placements, chart.layers, units.colors, chart.titles(units),
             chart.background, page, under)

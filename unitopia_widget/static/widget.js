@@ -2519,6 +2519,37 @@ function createLegend(view, signal) {
   return { area, toggle, place };
 }
 
+// src/pile-labels.js
+var NS = "http://www.w3.org/2000/svg";
+var ANCHORS = /* @__PURE__ */ new Set(["start", "middle", "end"]);
+function createPileLabels(stage) {
+  const svg = document.createElementNS(NS, "svg");
+  svg.setAttribute("class", "ut-pile-labels");
+  svg.setAttribute("preserveAspectRatio", "none");
+  svg.setAttribute("aria-hidden", "true");
+  function update(labels, size) {
+    const shown = Array.isArray(labels) ? labels : [];
+    svg.replaceChildren();
+    if (!shown.length) return void svg.remove();
+    if (svg.parentNode !== stage.el) stage.el.insertBefore(svg, stage.tooltip);
+    svg.setAttribute("viewBox", `0 0 ${Number(size[0]) || 1} ${Number(size[1]) || 1}`);
+    for (const l of shown) {
+      if (!l || !Number.isFinite(Number(l.x)) || !Number.isFinite(Number(l.y))) continue;
+      const text = document.createElementNS(NS, "text");
+      text.setAttribute("class", "pile-label");
+      text.setAttribute("x", String(Number(l.x)));
+      text.setAttribute("y", String(Number(l.y)));
+      text.setAttribute("font-size", "12");
+      text.setAttribute("font-family", "sans-serif");
+      text.setAttribute("fill", "#222");
+      text.setAttribute("text-anchor", ANCHORS.has(l.anchor) ? l.anchor : "middle");
+      text.textContent = String(l.text ?? "");
+      svg.append(text);
+    }
+  }
+  return { el: svg, update };
+}
+
 // src/export.js
 function exportBlob(format, data) {
   if (format === "svg") return new Blob([String(data)], { type: "image/svg+xml" });
@@ -2907,6 +2938,8 @@ function renderView({ model, el, signal }) {
   const panels = [createLayersPanel(view), createSettingsPanel(view), createFieldsPanel(view), createMarkPanel(view)];
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
+  const pileLabels = createPileLabels(stage);
+  const drawLabels = () => pileLabels.update(list(model, "pile_labels"), readDesign(model).canvas || [1, 1]);
   const pageText = createPageText(stage.wrap);
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
   foldPanels(panels);
@@ -2970,6 +3003,7 @@ function renderView({ model, el, signal }) {
     } else stage.bg.hidden = true;
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     pageText.update(design);
+    drawLabels();
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -3021,6 +3055,7 @@ function renderView({ model, el, signal }) {
   onModel(model, ["change:status", "change:frame_count", "change:progress", "change:error"], () => (status.answered(), onStatus()), signal);
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
+  onModel(model, ["change:pile_labels"], drawLabels, signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

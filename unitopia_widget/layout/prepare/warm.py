@@ -69,7 +69,10 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
     where = {key: k for k, key in enumerate(unit_keys(previous["layer"], previous["row"]))}
     found = np.array([where.get(key, -1) for key in
                       unit_keys([names[li] for li in units.layer], units.rows)])
-    kept = found >= 0
+    # a grid's marks stand in the cells the fresh start snapped them to (their container
+    # may have moved): only marks that move start where they were
+    still = ~p.placement.movable.cpu().numpy().astype(bool)
+    kept = (found >= 0) & ~still
     if not kept.any():
         return problem
     old = previous.iloc[found[kept]]
@@ -111,7 +114,8 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
     center[pinned] = pin_xy
     for key, region in regions.items():
         inside = np.array([repr(layers[li].region.to_json()) == key for li in units.layer])
-        added = inside & ~kept & ~is_pinned & np.array([layers[li].emitter is None for li in units.layer])
+        added = inside & ~kept & ~is_pinned & ~still & np.array([layers[li].emitter is None
+                                                                   for li in units.layer])
         if added.any():
             taken = inside & (kept | is_pinned)
             center[added] = free_room(region, center, radius, taken, added)
