@@ -106,19 +106,20 @@ DATE_STEPS = (*[("s", k) for k in (1, 5, 15, 30)], *[("min", k) for k in (1, 5, 
 SECONDS = {"s": 1, "min": 60, "h": 3600, "D": 86400}
 
 
-def _date_steps(lo: float, hi: float, unit: str, count: int) -> list[float]:
-    """Times (s since 1970, UTC) in [lo, hi] at whole multiples of ``count`` ``unit``s."""
+def _date_steps(lo: float, hi: float, unit: str, count: int, most: int) -> list[float] | None:
+    """Times (s since 1970, UTC) in [lo, hi] at whole multiples of ``count`` ``unit``s; None
+    when there are more than ``most``."""
     if unit in SECONDS:
         step = SECONDS[unit] * count
-        return list(np.arange(math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9) + 1)
-                    * float(step))
+        first, last = math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9)
+        return None if last - first + 1 > most else [k * float(step) for k in range(first, last + 1)]
     start, end = pd.Timestamp(lo, unit="s"), pd.Timestamp(hi, unit="s")
     every = count * (12 if unit == "Y" else 1)   # in months
-    if (end.year - start.year) * 12 // every > 1000:
-        return [0.0] * 1001   # too many: the caller takes a coarser step
     month = start.year * 12 + start.month - 1
     month += start > pd.Timestamp(year=start.year, month=start.month, day=1)
     month += -month % every
+    if (end.year * 12 + end.month - 1 - month) // every + 1 > most:
+        return None
     out = []
     while (t := pd.Timestamp(year=month // 12, month=month % 12 + 1, day=1)) <= end:
         out.append(t.value / 1e9)
@@ -141,11 +142,17 @@ def _date_label(t: pd.Timestamp, unit: str, span: float) -> str:
 def date_ticks(lo: float, hi: float, most: int = 4) -> list[tuple[float, str]]:
     """``[(time, label), ...]``: 2 to ``most`` times in [lo, hi] (s since 1970, UTC) at the
     finest round step that gives no more (whole seconds ... years), labelled at that
-    step's unit ("1970", "Jan 2024", "3 Jan 2024", "14:30")."""
+    step's unit ("1970", "Jan 2024", "3 Jan 2024", "14:30"); one round time when no step
+    gives two that few, the start when none is in the range."""
+    single = None
     for unit, count in DATE_STEPS:
-        times = _date_steps(lo, hi, unit, count)
-        if 2 <= len(times) <= most:
+        times = _date_steps(lo, hi, unit, count, most)
+        if times is not None and len(times) >= 2:
             return [(t, _date_label(pd.Timestamp(t, unit="s"), unit, hi - lo)) for t in times]
+        if times and single is None:
+            single = [(times[0], _date_label(pd.Timestamp(times[0], unit="s"), unit, hi - lo))]
+    if single is not None:
+        return single
     t = pd.Timestamp(lo, unit="s")
     return [(lo, f"{t.day} {t:%b %Y %H:%M:%S}")]
 
