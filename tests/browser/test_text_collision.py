@@ -81,10 +81,15 @@ def overlap(a, b) -> bool:
 
 
 def crosses(line, box) -> bool:
-    """An axis line (horizontal or vertical) through the inside of ``box``."""
+    """An axis line or tick (horizontal or vertical) through the inside of ``box``."""
     x1, y1, x2, y2 = line
-    return overlap((min(x1, x2) - 0.01, min(y1, y2) - 0.01, max(x1, x2) + 0.01, max(y1, y2) + 0.01),
-                   box) if (x1 == x2 or y1 == y2) else False
+    if y1 == y2:
+        return box[1] + SLACK < y1 < box[3] - SLACK and \
+            min(max(x1, x2), box[2]) - max(min(x1, x2), box[0]) > SLACK
+    if x1 == x2:
+        return box[0] + SLACK < x1 < box[2] - SLACK and \
+            min(max(y1, y2), box[3]) - max(min(y1, y2), box[1]) > SLACK
+    return False
 
 
 def problems(measured) -> list[str]:
@@ -123,6 +128,7 @@ def test_no_text_crosses_text_or_marks_and_no_axis_crosses_a_mark(browser, galle
     finally:
         page.close()
     assert len(measured) == len(GALLERY)
+    assert crosses((0, 5, 10, 5), (2, 0, 8, 10)) and not crosses((0, 12, 10, 12), (2, 0, 8, 10))
     found = {name: problems(m) for (name, _), m in zip(gallery, measured)}
     for (name, _), m in zip(gallery, measured):   # the checks see what they should
         assert len(m["texts"]) >= 5 and len(m["marks"]) >= 100, name
