@@ -54,7 +54,8 @@ class Entry:
 class Section:
     title: str
     entries: list = field(default_factory=list)
-    bar: tuple | None = None  # numeric colour: (lo, hi), drawn as a gradient with tick entries
+    bar: tuple | None = None  # numeric colour: (lo, hi), a gradient; entries without a mark are
+    #                           its ticks, those with one swatches under it ("missing")
     more: int = 0             # categories left out after the entries ("... and 9,990 more")
 
 
