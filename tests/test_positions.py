@@ -77,10 +77,12 @@ def test_the_free_axis_spreads_the_marks_as_a_beeswarm(swarm):
     assert table["y"].std() > 5 * radius          # stacked across, not all on one line
 
 
-def test_the_axis_is_drawn_in_the_export_with_round_ticks(swarm):
+def test_the_axis_is_drawn_in_the_export_with_round_ticks(swarm, tmp_path):
     chart, _ = swarm
     svg = chart.to_svg(axes=True)
     assert svg.count('<g class="axis" data-channel="x"') == 1
+    chart.save(tmp_path / "swarm.html", axes=True)                 # the page carries the axes
+    assert 'class=\\"axis\\" data-channel=\\"x\\"' in (tmp_path / "swarm.html").read_text()
     assert ">0</text>" in svg and ">v</text>" in svg
     assert 'class="axis"' not in chart.to_svg()
     plain = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0]}), canvas=(200, 200))
