@@ -70,7 +70,7 @@ def test_a_datetime_colour_is_a_continuous_scale_with_date_labels():
     assert enc.colors[0] != enc.colors[10] and len(set(enc.colors)) == 20   # not a cycle of 10
     c = laid_out(pd.DataFrame({"day": days}), mark="circle", color="day")
     labels = [g.find(f"{SVG}text").text for g in colour_entries(c.to_svg())]
-    assert labels and all(len(s) == 10 and s.startswith("2024-01-") for s in labels), labels
+    assert labels == ["4 Jan 2024", "18 Jan 2024"]   # days: the most whose labels stay apart
     assert 'class="legend-bar"' in c.to_svg()
 
 

@@ -9,6 +9,7 @@ import os
 import re
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
@@ -108,3 +109,10 @@ def test_the_guide_examples_run_in_order(page, tmp_path, monkeypatch, one_thread
     scope = {"uw": uw, "df": df, "w": uw.UnitoPia(df, mark="star", size="Duration", color="Task")}
     for block in blocks:
         exec(block, scope)
+
+
+def test_the_demo_lays_out_without_a_warning():
+    """The package's own demo asks for nothing its marks cannot do (issue 46)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        make_demo().demo_chart(iterations=20).layout()

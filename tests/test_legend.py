@@ -230,3 +230,70 @@ def test_colour_of_another_column_is_keyed_with_a_plain_disc_when_a_layer_draws_
     for g in entries(svg, "color"):
         fragment = defs[g.find(f"{SVG}use").get("href")[1:]]
         assert f' d="{disc}"' in fragment                              # drawn as the disc
+
+
+def colour_section(svg):
+    """(the colour section's ``(value, label)`` entries, its bar's ``<rect>``)."""
+    root = ET.fromstring(svg)
+    found = [(g.get("data-value"), "".join(g.find(f"{SVG}text").itertext()))
+             for g in root.iter(f"{SVG}g") if (g.get("class") or "") == "legend-entry"
+             and g.get("data-channel") == "color"]
+    return found, root.find(f".//{SVG}rect[@class='legend-bar']")
+
+
+def test_a_numeric_colour_with_missing_values_gets_a_grey_swatch_last_and_one_warning():
+    df = pd.DataFrame({"hp": [50.0, np.nan, 120.0, 90.0, np.nan, 200.0] * 5})
+    with pytest.warns(UserWarning) as caught:
+        w = uw.UnitoPia(df, mark="circle", color="hp", iterations=20)
+    assert [str(x.message) for x in caught] == [
+        "color='hp': 10 of 30 rows are missing; they are drawn as the category 'missing' in grey"]
+    with pytest.warns(UserWarning) as caught:
+        w.run(wait=True)
+    assert len([x for x in caught if "missing" in str(x.message)]) == 1   # once per call
+    found, bar = colour_section(w.to_svg())
+    assert bar is not None and found[-1] == ("missing", "missing")
+    swatch = ET.fromstring(w.to_svg()).find(f".//{SVG}g[@data-value='missing']")
+    assert swatch.find(f"{SVG}use") is not None   # a swatch, drawn after the bar's ticks
+
+
+def test_date_ticks_are_labelled_at_their_step_and_never_touch():
+    from unitopia_widget.output.legend import date_ticks, spaced_ticks
+    from unitopia_widget.output.text import text_width
+    years = pd.Series(pd.to_datetime([f"{y}-01-01" for y in range(1970, 1983)]))
+    df = pd.DataFrame({"Year": years})
+    c = uw.Chart(df, mark="circle", color="Year", iterations=20)
+    c.layout()
+    found, _ = colour_section(c.to_svg())
+    assert [label for _, label in found] == ["1970", "1975", "1980"]
+    seconds = lambda s: pd.Timestamp(s).value / 1e9   # noqa: E731
+    assert [lab for _, lab in date_ticks(seconds("2024-01-01"), seconds("2024-09-01"))] == \
+        ["Jan 2024", "Apr 2024", "Jul 2024"]
+    ticks = spaced_ticks(seconds("2024-01-01"), seconds("2024-01-20"), True, 160)
+    assert [lab for _, lab in ticks] == ["4 Jan 2024", "18 Jan 2024"]
+    (t1, l1), (t2, l2) = ticks
+    gap = (t2 - t1) / (seconds("2024-01-20") - seconds("2024-01-01")) * 160
+    assert gap >= (text_width(l1) + text_width(l2)) / 2   # apart, not touching
+
+
+def test_no_colour_bar_label_is_clipped_at_the_page_edge():
+    from unitopia_widget.output.text import text_width
+    df = pd.DataFrame({"Year": pd.to_datetime([f"{y}-01-01" for y in range(1970, 1983)])})
+    c = uw.Chart(df, mark="circle", color="Year", iterations=20)
+    c.layout()
+    for legend in ("bottom", "left", "top"):
+        root = ET.fromstring(c.to_svg(legend=legend))
+        vx = float(root.get("viewBox").split()[0])
+        block = root.find(f".//{SVG}g[@class='legend']")
+        dx = float(re.search(r"translate\(([-\d.]+)", block.get("transform")).group(1))
+        first = block.find(f".//{SVG}g[@class='legend-entry']/{SVG}text")
+        left = dx + float(first.get("x")) - text_width(first.text) / 2
+        assert left >= vx, (legend, left, vx)
+
+
+def test_the_caption_stands_under_the_chart_and_a_bottom_legend_under_it(chart):
+    root = ET.fromstring(chart.to_svg(legend="bottom", caption="One star per task."))
+    caption = root.find(f"{SVG}text[@class='caption']")
+    block = root.find(f".//{SVG}g[@class='legend']")
+    top = float(re.search(r"translate\([-\d.]+ ([-\d.]+)", block.get("transform")).group(1))
+    assert 500 < float(caption.get("y")) < 500 + 16   # right under the 500 px canvas
+    assert top > float(caption.get("y")) + 12          # the legend below the caption's line

@@ -11,6 +11,7 @@ import unitopia_widget as uw
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.prepare.lattice import Region
+from unitopia_widget.layout.prepare.positions import BAND_GAP
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 CANVAS = (800, 500)
@@ -76,10 +77,12 @@ def test_the_free_axis_spreads_the_marks_as_a_beeswarm(swarm):
     assert table["y"].std() > 5 * radius          # stacked across, not all on one line
 
 
-def test_the_axis_is_drawn_in_the_export_with_round_ticks(swarm):
+def test_the_axis_is_drawn_in_the_export_with_round_ticks(swarm, tmp_path):
     chart, _ = swarm
     svg = chart.to_svg(axes=True)
     assert svg.count('<g class="axis" data-channel="x"') == 1
+    chart.save(tmp_path / "swarm.html", axes=True)                 # the page carries the axes
+    assert 'class=\\"axis\\" data-channel=\\"x\\"' in (tmp_path / "swarm.html").read_text()
     assert ">0</text>" in svg and ">v</text>" in svg
     assert 'class="axis"' not in chart.to_svg()
     plain = uw.Chart(pd.DataFrame({"v": [1.0, 2.0, 3.0]}), canvas=(200, 200))
@@ -114,9 +117,11 @@ def test_categories_make_bands_and_each_mark_stays_in_its_band():
     table = chart.layout()
     axis = next(a for a in chart.result.axes if a.channel == "y")
     assert axis.scale.domain == ("high", "low", "mid")   # sorted categories
+    gap = BAND_GAP / 4 * (axis.hi - axis.lo) / 3   # half the gap each band keeps at its ends
     for k, name in enumerate(axis.scale.domain):
-        y = table["y"][chart.df.loc[table["row"], "k"].to_numpy() == name]
-        assert y.min() >= axis.at(k / 3) - 1 and y.max() <= axis.at((k + 1) / 3) + 1
+        mine = chart.df.loc[table["row"], "k"].to_numpy() == name
+        top, bottom = (table["y"] - table["height"] / 2)[mine], (table["y"] + table["height"] / 2)[mine]
+        assert top.min() >= axis.at(k / 3) + gap - 1 and bottom.max() <= axis.at((k + 1) / 3) - gap + 1
     assert disc_overlap(table) <= 0.01
     assert ">mid</text>" in chart.to_svg(axes=True)
 
@@ -163,17 +168,20 @@ def test_a_datetime_column_is_a_linear_position_with_date_ticks():
     tx = problem.anchor.target[:, 0].numpy().astype(float)
     assert np.allclose(np.diff(tx), np.diff(tx)[0], rtol=1e-3)       # equal steps in time
     labels = [label for _, label in ticks(problem.anchor.axes[0])]
-    assert labels and all(label.startswith("2025-") for label in labels)
+    assert labels == ["Jan 2025", "Apr 2025", "Jul 2025", "Oct 2025"]   # months: the unit
 
 
-def test_an_axis_without_room_on_its_side_goes_to_the_far_side():
+def test_an_axis_stands_outside_its_container_and_its_marks_with_its_labels():
     from unitopia_widget.design.positions import Scale
     from unitopia_widget.layout.prepare.positions import Axis
     from unitopia_widget.output.axes import axes_svg
     bands = Scale("k", "band", ("a", "b"))
-    left = axes_svg([Axis("l", "y", bands, 50, 450, cross=100, far=500)], CANVAS)
-    right = axes_svg([Axis("l", "y", bands, 50, 450, cross=0, far=500)], CANVAS)
-    assert 'x1="94.0"' in left and 'text-anchor="end"' in left
-    assert 'x1="506.0"' in right and 'text-anchor="start"' in right
-    top = axes_svg([Axis("l", "x", bands, 50, 750, cross=500, far=100)], CANVAS)
-    assert 'y1="61.0"' in top                       # above the container: 100 - 6 - 33
+    marks = {"l": np.array([[80.0, 60, 120, 100], [300, 420, 340, 470]])}   # x0, y0, x1, y1
+    svg, box = axes_svg([Axis("l", "y", bands, 50, 450, cross=100)], marks)
+    assert 'x1="74.0"' in svg and 'text-anchor="end"' in svg   # left of the leftmost mark
+    assert box[2] == pytest.approx(74.0) and box[0] < 74 - 10   # the labels lie left of it
+    svg, box = axes_svg([Axis("l", "x", bands, 50, 750, cross=460)], marks)
+    assert 'y1="476.0"' in svg and box[1] == pytest.approx(476.0)   # under the lowest mark
+    assert box[3] > 476 + 2 * 11                                 # labels and title under it
+
+

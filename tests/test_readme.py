@@ -103,3 +103,16 @@ def test_designs_you_can_rebuild_run_as_written(tmp_path, monkeypatch):
         exec(block, scope)
     assert (tmp_path / "design.json").exists() and (tmp_path / "jar.unitopia.json").exists()
     assert uw.UnitoPia.load("jar.unitopia.json", df).design == scope["w"].design
+
+
+def test_the_axis_chart_runs_on_the_real_table(tmp_path, monkeypatch):
+    pytest.importorskip("vega_datasets")
+    block = re.findall(r"```python\n(.*?)```", section("A chart from a real table"), re.S)[0]
+    assert "data.cars()" in block and "axes=True" in block
+    monkeypatch.chdir(tmp_path)
+    scope = {"uw": uw}
+    code = block.replace("w.run(wait=True)", "w.layer(0).set(iterations=40)\nw.run(wait=True)")
+    with pytest.warns(UserWarning, match="dropna=True: dropped 6 of 406 rows"):
+        exec(code, scope)
+    assert scope["w"].status == "done" and (tmp_path / "cars.png").stat().st_size > 10_000
+    assert scope["w"].to_svg(axes=True).count('<g class="axis"') == 2

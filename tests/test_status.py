@@ -180,7 +180,8 @@ def test_progress_starts_afresh_at_each_run(df):
     w._chart.layout = stopped_before_its_first_step
     w.run(wait=True)
     assert w.status == "stopped"
-    assert w.progress == {"iteration": 0, "max_iterations": 30, "loss": None, "done": True}
+    assert w.progress == {"iteration": 0, "max_iterations": 30, "loss": None, "done": True,
+                          "stopped": True}
 
 
 def test_a_sketch_too_large_to_draw_is_blamed_at_load_time():
@@ -259,3 +260,15 @@ def test_saving_a_stale_layout_warns_and_saving_during_a_run_names_wait(df, tmp_
             w.save(tmp_path / "running.png")
     finally:
         w.stop()
+
+
+def test_the_progress_says_the_phase_and_the_run_time_not_only_the_loss(df):
+    w = uw.UnitoPia(df, size="v", iterations=40)
+    seen = []
+    w.observe(lambda change: seen.append(dict(change["new"])), names="progress")
+    w.run(wait=True)
+    phases = {p.get("phase") for p in seen if not p["done"]} - {None}   # None: the start
+    assert phases and phases <= {"settle", "polish"}
+    final = w.progress
+    assert final["done"] and not final["stopped"]
+    assert final["seconds"] == pytest.approx(w._chart.result.seconds)   # the whole run

@@ -216,17 +216,18 @@ class Chart(Piling, HandControl):
     def _changed(self) -> None:
         """Called after every design change; the widget overrides it to sync."""
 
-    def bind_check(self) -> None:
-        """Encode every layer now, so bad bindings fail at binding time."""
-        self._units = self._check(self.layers, self.canvas)
+    def bind_check(self, warn: bool = True) -> None:
+        """Encode every layer now, so bad bindings fail at binding time (``warn``: give the
+        bindings' warnings; False when this call gave them already)."""
+        self._units = self._check(self.layers, self.canvas, warn)
 
-    def _check(self, layers, canvas):
+    def _check(self, layers, canvas, warn: bool = True):
         """The units of ``layers``, or a ValueError for whatever the layout would fail on."""
         if len(layers) > MAX_LAYERS:
             raise ValueError(f"{len(layers)} layers is more than this widget lays out "
                              f"({MAX_LAYERS}); merge some layers")
         block_order(layers)
-        units = bind(self.df, layers)   # more than MAX_UNITS marks: refused there
+        units = bind(self.df, layers, warn)   # more than MAX_UNITS marks: refused there
         for half in (units.half_w, units.half_h):
             if not (np.isfinite(half).all() and half.min() > 0 and half.max() <= MAX_SPREAD * half.min()):
                 bound = sorted({f"{c}={layer.encodings[c]!r}" for layer in layers
@@ -252,12 +253,14 @@ class Chart(Piling, HandControl):
 
     # --- layout -------------------------------------------------------------
     def layout(self, on_frame=None, cancel=None, on_progress=None, frame_every: int = 3,
-               abort=None, fresh: bool = False):
+               abort=None, fresh: bool = False, warn_bindings: bool = True):
         """Solve the layout now; returns the placements table and keeps it, and the
         run's frames in ``frames`` (``(F, N, 4)``, see ``layout.frames``). ``abort()``
         True during the setup raises ``Cancelled`` and keeps the previous layout.
-        A run after a change starts from the last layout (``fresh=True``: from scratch)."""
-        self.bind_check()
+        A run after a change starts from the last layout (``fresh=True``: from scratch).
+        ``warn_bindings=False``: the caller has just bound the design and warned (each
+        warning once per call)."""
+        self.bind_check(warn_bindings)
         self._check_pins()
         for names, total in overfilled(self.layers, self.scales):
             warnings.warn(f"layers {names} share one container under scales='independent', where "

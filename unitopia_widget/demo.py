@@ -36,8 +36,9 @@ def jar_picture() -> Image.Image:
 
 def demo_chart(seed: int = 0, chart_cls=Chart, **kwargs):
     """Stars settling in a jar: a jar-shaped path container, a point force at its
-    bottom, an open boundary (the stars fill half the jar), the jar as background."""
+    bottom, an open boundary (the stars fill 30% of the jar, as much as their spiky
+    footprints pack), the jar as background."""
     return chart_cls(demo_data(), mark="star", size="Duration", color="Task",
                      container=Container.path(JAR), forces=[PointForce(400, 470)],
-                     boundary="open", fill=0.45, background=jar_picture(),
+                     boundary="open", fill=0.3, background=jar_picture(),
                      canvas=(800, 500), seed=seed, **kwargs)

@@ -14,13 +14,24 @@ export function statusLabel(status, stale, kernel = "live") {
   return { text: s, state: s };
 }
 
-/** Progress bar settings from {iteration, max_iterations, loss, done}: full once done. */
+const PHASES = { settle: "settling", polish: "polishing" };
+
+/**
+ * Progress bar settings from {iteration, max_iterations, phase, seconds, done, stopped}: full
+ * once done. The detail says what the run is doing ("settling", "polishing") or how long it
+ * took ("done in 2.1 s"), and the iteration: words a user can act on, not the loss.
+ */
 export function progressBar(p) {
   const it = Number(p && p.iteration) || 0;
   const max = Number(p && p.max_iterations) || 0;
   const done = !!(p && p.done);
+  const seconds = Number(p && p.seconds);
   const parts = [];
+  if (done && Number.isFinite(seconds)) {
+    parts.push(`${p.stopped ? "stopped after" : "done in"} ${seconds.toFixed(1)} s`);
+  } else if (!done && p && PHASES[p.phase]) {
+    parts.push(PHASES[p.phase]);
+  }
   if (max) parts.push(`iteration ${it} / ${max}`);
-  if (p && p.loss != null && Number.isFinite(Number(p.loss))) parts.push(`loss ${Number(p.loss).toPrecision(4)}`);
   return { max: max || 1, value: done ? max || 1 : Math.min(it, max || 1), hidden: !max, detail: parts.join(" \u00b7 ") };
 }

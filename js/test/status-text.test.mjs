@@ -16,7 +16,18 @@ test("a finished run fills the progress bar", () => {
     { max: 600, value: 600, hidden: false, detail: "iteration 107 / 600" });
   assert.equal(progressBar({ iteration: 107, max_iterations: 600 }).value, 107);
   assert.equal(progressBar({}).hidden, true);
-  assert.equal(progressBar({ iteration: 3, max_iterations: 10, loss: 0.123456 }).detail, "iteration 3 / 10 \u00b7 loss 0.1235");
+  assert.equal(progressBar({ iteration: 3, max_iterations: 10, loss: 0.123456 }).detail, "iteration 3 / 10");
+});
+
+test("the detail says what the run does and how long it took, never the loss", () => {
+  assert.equal(progressBar({ iteration: 3, max_iterations: 10, loss: 0.1, phase: "settle" }).detail,
+    "settling \u00b7 iteration 3 / 10");
+  assert.equal(progressBar({ iteration: 9, max_iterations: 10, phase: "polish" }).detail,
+    "polishing \u00b7 iteration 9 / 10");
+  assert.equal(progressBar({ iteration: 9, max_iterations: 10, phase: "polish", seconds: 2.14, done: true }).detail,
+    "done in 2.1 s \u00b7 iteration 9 / 10");
+  assert.equal(progressBar({ iteration: 4, max_iterations: 10, seconds: 0.5, done: true, stopped: true }).detail,
+    "stopped after 0.5 s \u00b7 iteration 4 / 10");
 });
 
 test("the kernel's state: gone reads no kernel, waiting reads waiting for the kernel", () => {

@@ -8,6 +8,7 @@ import base64
 import copy
 import pathlib
 import threading
+import time
 import uuid
 import warnings
 
@@ -94,7 +95,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     frame = t.Bytes(b"").tag(sync=True)                #: float32 (N, 4): x, y, angle deg, scale
     frame_count = t.Int(0).tag(sync=True)              #: frames sent in the current run
     status = t.Unicode("idle").tag(sync=True)          #: idle, running, done, stopped, error
-    progress = t.Dict().tag(sync=True)                 #: {"iteration", "max_iterations", "loss", "done"}
+    progress = t.Dict().tag(sync=True)                 #: {"iteration", "max_iterations", "loss", "phase", "seconds", "done", "stopped"}
     error = t.Unicode("").tag(sync=True)               #: last error message, "" if none
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend_image = t.Dict().tag(sync=True)             #: {} or {"src": svg data URL, "width", "height"}
@@ -275,11 +276,15 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         return max(layer.iterations for layer in self._chart.layers)
 
     def _job(self, on_frame, cancel):
+        started = time.perf_counter()
+
         def progress(i, loss, stats):
-            self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss}
+            self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss,
+                              "phase": stats["phase"], "seconds": time.perf_counter() - started}
         try:   # every iteration offers its frame: the runner sends at most its fps a second
             return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
-                                      abort=cancel, fresh=self._fresh, frame_every=1)
+                                      abort=cancel, fresh=self._fresh, frame_every=1,
+                                      warn_bindings=False)   # run() warned
         except Cancelled:   # stopped before its first step: nothing to keep
             return None
 
@@ -301,7 +306,9 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         """The run ended: converged, stopped, or cut short by a frame that could not be sent;
         ``table`` None: stopped before its first step, the last good layout is shown again."""
         stopped = table is None or (self._chart.result is not None and self._chart.result.cancelled)
-        final = {**self._progress, "done": True}
+        final = {**self._progress, "done": True, "stopped": stopped}
+        if table is not None and self._chart.result is not None:   # the whole run's time
+            final["seconds"] = self._chart.result.seconds
         if table is None:
             self._show_kept()
         if self._frame_error is not None:

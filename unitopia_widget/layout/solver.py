@@ -55,7 +55,9 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
           cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None,
           start_frame: bool = True) -> Result:
     """Run the layout: render, step, read back, then the rules of ``rules.SCHEDULE``.
-    ``start_frame=False``: the caller has sent the start frame (``build_problem``'s ``on_start``)."""
+    ``start_frame=False``: the caller has sent the start frame (``build_problem``'s ``on_start``).
+    ``on_progress(iteration, loss, stats)`` after each step: ``stats`` the overlap and outside
+    shares and ``"phase"``, the phase the step ran in ("settle", "polish")."""
     p = problem
     dev = torch.device(p.device)
     started = time.perf_counter()
@@ -131,7 +133,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
         if on_frame is not None and s.iteration % frame_every == 0:
             on_frame(frame(place, ctl.unit_scale()))
         if on_progress is not None:
-            on_progress(s.iteration, s.loss_value, s.stats)
+            on_progress(s.iteration, s.loss_value, {**s.stats, "phase": s.phase})
         s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
         s.values, s.index, s.owner = values, index, owner
         run(s)

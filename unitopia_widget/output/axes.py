@@ -2,11 +2,12 @@
 
 Each bound ``x=``/``y=`` of a layer (a ``layout.prepare.positions.Axis`` the layout
 kept in ``result.axes``) is drawn as ``<g class="axis" data-channel="x|y"
-data-layer=...>``: a line along the extent the values were mapped to, below
-the container (x) or left of it (y) (above or right of it when the canvas leaves no
-room there), ticks at round values (decades on a log
-scale, dates for datetimes) or one label per band at its centre, and the
-column's name at the end. Lines and text stay on the canvas.
+data-layer=...>``: a line along the extent the values were mapped to, below the
+container and its layer's marks (x) or left of them (y), ticks at round values
+whose labels do not touch (decades on a log scale, dates for datetimes) or one
+label per band at its centre, and the column's name: at the right end under the
+x axis, above the y axis on its left. Axes lie outside the marks; the page grows
+around them (``axes_svg`` returns their bounding box).
 """
 from __future__ import annotations
 
@@ -15,57 +16,64 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from .legend import date_label, round_dates
+from .legend import date_ticks, round_values, spaced_ticks
 from .legend_draw import TEXT
+from .text import text_width
 
 FONT = 11          # px, tick labels
-GAP = 6            # px between the container's edge and the axis line
+GAP = 6            # px between the marks (or the container's edge) and the axis line
 TICK = 4           # px, tick length
-ROOM = 3 * FONT    # px kept between the axis line and the canvas edge for the labels
-MAX_LABEL = 16     # characters of a band label
+MAX_LABEL = 16     # characters of a band label on a y axis
+MOST_TICKS = 6     # numeric ticks on an axis at most
+DESCENT = 0.3      # of a font size, below a label's baseline
 
 
-def axes_svg(axes, canvas) -> str:
-    """SVG of every distinct axis in ``axes`` on ``canvas`` (w, h)."""
-    seen, out = set(), []
+def axes_svg(axes, marks: dict) -> tuple[str, tuple | None]:
+    """``(svg, box)``: every distinct axis in ``axes``, and the box ``(x0, y0, x1, y1)``
+    (canvas px) they take (None without axes). ``marks``: layer name -> ``(k, 4)`` boxes
+    ``x0, y0, x1, y1`` of its placed marks (canvas px), which each axis stands clear of."""
+    seen, out, boxes = set(), [], []
     for axis in axes:
         key = (axis.channel, axis.scale.column, round(axis.lo, 1), round(axis.hi, 1),
                round(axis.cross, 1))
         if key not in seen:
             seen.add(key)
-            out.append(_axis(axis, canvas))
-    return "".join(out)
+            svg, box = _axis(axis, marks.get(axis.layer, np.zeros((0, 4))))
+            out.append(svg)
+            boxes.append(box)
+    if not boxes:
+        return "", None
+    b = np.array(boxes)
+    return "".join(out), (b[:, 0].min(), b[:, 1].min(), b[:, 2].max(), b[:, 3].max())
 
 
 def ticks(axis) -> list[tuple[float, str]]:
-    """``[(fraction of the extent, label), ...]`` of an axis."""
+    """``[(fraction of the extent, label), ...]`` of an axis: on an x axis as many round
+    values as keep their labels apart, on a y axis one per two label heights."""
     scale = axis.scale
+    length = abs(axis.hi - axis.lo)
     if scale.kind == "band":
         count = len(scale.domain)
-        return [((k + 0.5) / count, _clip(str(v))) for k, v in enumerate(scale.domain)]
+        room = length / count - 2 * TICK   # a label stays within its band on an x axis
+        return [((k + 0.5) / count, fit(str(v), room) if axis.channel == "x" else _clip(str(v)))
+                for k, v in enumerate(scale.domain)]
     lo, hi = scale.domain
-    if scale.temporal:
-        return [(_fraction(scale, t), date_label(t, hi - lo)) for t in round_dates(lo, hi, 5)]
-    values = _decades(lo, hi) if scale.kind == "log" else _round(lo, hi)
-    return [(_fraction(scale, v), f"{v:.6g}") for v in values]
+    if scale.kind == "log":
+        return [(_fraction(scale, v), f"{v:.6g}") for v in _decades(lo, hi)]
+    if axis.channel == "y":
+        most = max(2, min(MOST_TICKS, int(length / (2 * FONT))))
+        picked = (date_ticks(lo, hi, most) if scale.temporal else
+                  [(v, f"{v:.6g}") for v in round_values(lo, hi, most, positive=False)])
+    else:
+        picked = spaced_ticks(lo, hi, scale.temporal, length, MOST_TICKS, FONT,
+                              lambda v: _fraction(scale, v))
+    return [(_fraction(scale, v), label) for v, label in picked]
 
 
 def _fraction(scale, value: float) -> float:
     lo, hi = scale.domain
     f = (lambda v: math.log10(v)) if scale.kind == "log" else (lambda v: v)
     return 0.5 if hi <= lo else (f(value) - f(lo)) / (f(hi) - f(lo))
-
-
-def _round(lo: float, hi: float, most: int = 6) -> list[float]:
-    """3 to ``most`` round values (1, 2 or 5 times a power of ten apart) in [lo, hi]."""
-    if not hi > lo:
-        return [lo]
-    top = int(math.floor(math.log10(hi - lo))) + 1
-    for step in (m * 10.0 ** e for e in range(top, top - 4, -1) for m in (5, 2, 1)):
-        values = np.arange(math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9) + 1) * step
-        if 3 <= len(values) <= most:
-            return [float(f"{v:.6g}") for v in values]
-    return [lo, hi]
 
 
 def _decades(lo: float, hi: float) -> list[float]:
@@ -81,41 +89,57 @@ def _clip(text: str) -> str:
     return text if len(text) <= MAX_LABEL else text[:MAX_LABEL - 1] + "…"
 
 
+def fit(text: str, room: float, size: float = FONT) -> str:
+    """``text`` cut with an ellipsis to at most ``room`` px wide at ``size`` px."""
+    if text_width(text, size) <= room:
+        return text
+    while text and text_width(text + "…", size) > room:
+        text = text[:-1]
+    return text + "…"
+
+
 def _n(v: float) -> str:
     return f"{float(v):.1f}"
 
 
-def _axis(axis, canvas) -> str:
-    w, h = canvas
+def _axis(axis, marks: np.ndarray) -> tuple[str, tuple]:
+    """The SVG of one axis, clear of ``marks`` (``(k, 4)`` boxes), and its box."""
     band = axis.scale.kind == "band"
     parts = []
-    if axis.channel == "x":
-        # below the container; above it when the canvas ends below and there is room above
-        below = axis.cross + GAP <= h - ROOM or axis.far - GAP < ROOM
-        y = min(axis.cross + GAP, h - ROOM) if below else axis.far - GAP - ROOM
+    title = _clip(axis.scale.column)
+    span_lo, span_hi = min(axis.lo, axis.hi), max(axis.lo, axis.hi)
+    if axis.channel == "x":   # under the container and every mark of the layer
+        y = max([axis.cross, *marks[:, 3]]) + GAP
         parts.append(f'<line stroke="#555" x1="{_n(axis.lo)}" y1="{_n(y)}" x2="{_n(axis.hi)}" y2="{_n(y)}"/>')
+        x0, x1 = span_lo, span_hi
         for t, label in ticks(axis):
             x = float(axis.at(t))
             if not band:
                 parts.append(f'<line stroke="#555" x1="{_n(x)}" y1="{_n(y)}" x2="{_n(x)}" y2="{_n(y + TICK)}"/>')
             parts.append(f'<text x="{_n(x)}" y="{_n(y + TICK + FONT)}" font-size="{FONT}" '
                          f'text-anchor="middle" {TEXT}>{escape(label)}</text>')
-        parts.append(f'<text x="{_n(axis.hi)}" y="{_n(y + TICK + 2.2 * FONT)}" font-size="{FONT}" '
-                     f'text-anchor="end" font-weight="bold" {TEXT}>{escape(_clip(axis.scale.column))}</text>')
-    else:
-        # left of the container, its labels before it; right of it when the canvas leaves
-        # no room on the left and does on the right
-        left = axis.cross - GAP >= 2 * ROOM or axis.far + GAP > w - 2 * ROOM
-        x = max(axis.cross - GAP, 2 * ROOM) if left else axis.far + GAP
-        side, anchor = (-1, "end") if left else (1, "start")
+            half = text_width(label, FONT) / 2
+            x0, x1 = min(x0, x - half), max(x1, x + half)
+        base = y + TICK + 2.2 * FONT
+        parts.append(f'<text x="{_n(span_hi)}" y="{_n(base)}" font-size="{FONT}" '
+                     f'text-anchor="end" font-weight="bold" {TEXT}>{escape(title)}</text>')
+        x0 = min(x0, span_hi - text_width(title, FONT, bold=True))
+        box = (x0, y, x1, base + DESCENT * FONT)
+    else:   # left of the container and every mark of the layer, its labels before it
+        x = min([axis.cross, *marks[:, 0]]) - GAP
         parts.append(f'<line stroke="#555" x1="{_n(x)}" y1="{_n(axis.lo)}" x2="{_n(x)}" y2="{_n(axis.hi)}"/>')
+        widest = 0.0
         for t, label in ticks(axis):
             y = float(axis.at(t))
             if not band:
-                parts.append(f'<line stroke="#555" x1="{_n(x + side * TICK)}" y1="{_n(y)}" x2="{_n(x)}" y2="{_n(y)}"/>')
-            parts.append(f'<text x="{_n(x + side * (TICK + 2))}" y="{_n(y + FONT / 3)}" font-size="{FONT}" '
-                         f'text-anchor="{anchor}" {TEXT}>{escape(label)}</text>')
-        parts.append(f'<text x="{_n(x)}" y="{_n(max(axis.lo - FONT, FONT))}" font-size="{FONT}" '
-                     f'text-anchor="middle" font-weight="bold" {TEXT}>{escape(_clip(axis.scale.column))}</text>')
+                parts.append(f'<line stroke="#555" x1="{_n(x - TICK)}" y1="{_n(y)}" x2="{_n(x)}" y2="{_n(y)}"/>')
+            parts.append(f'<text x="{_n(x - TICK - 2)}" y="{_n(y + FONT / 3)}" font-size="{FONT}" '
+                         f'text-anchor="end" {TEXT}>{escape(label)}</text>')
+            widest = max(widest, text_width(label, FONT))
+        base = span_lo - FONT   # the title above the top label, on the axis' side
+        parts.append(f'<text x="{_n(x)}" y="{_n(base)}" font-size="{FONT}" '
+                     f'text-anchor="end" font-weight="bold" {TEXT}>{escape(title)}</text>')
+        left = min(x - TICK - 2 - widest, x - text_width(title, FONT, bold=True))
+        box = (left, base - FONT, x, span_hi + FONT / 3 + DESCENT * FONT)
     return (f'<g class="axis" data-channel="{axis.channel}" data-layer={quoteattr(axis.layer)} '
-            '>' + "".join(parts) + "</g>")
+            '>' + "".join(parts) + "</g>"), box

@@ -20,19 +20,20 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..design.encodings import (continuous_values, is_css_color, is_continuous, is_temporal,
-                                linear_extent, palette_for)
+from ..design.encodings import (MISSING, MISSING_COLOR, continuous_values, is_css_color,
+                                is_continuous, is_temporal, linear_extent, palette_for)
 from ..design.groups import sorted_categories
 from ..design.marks import Mark
+from .text import text_width
 
 FONT = 12            # px, entry labels
 TITLE_FONT = 12      # px, section titles (bold)
-CHAR_W = 0.6         # text width per character, in font sizes (a safe over-estimate)
 LABEL_CHARS = 40     # labels longer than this are cut with an ellipsis
 MOST_ENTRIES = 20    # a section lists at most this many categories, then "... and n more"
 SWATCH = 16          # px, the long side of a colour or shape swatch and of the unit key's mark
 PAD = 8              # px between items
 BAR = (160, 12)      # px, numeric colour bar (w, h)
+TICK_GAP = 6         # px kept between two tick labels
 NEUTRAL = "#8c8c8c"  # size and unit-key marks of layers whose colour encodes a column
 
 
@@ -53,7 +54,8 @@ class Entry:
 class Section:
     title: str
     entries: list = field(default_factory=list)
-    bar: tuple | None = None  # numeric colour: (lo, hi), drawn as a gradient with tick entries
+    bar: tuple | None = None  # numeric colour: (lo, hi), a gradient; entries without a mark are
+    #                           its ticks, those with one swatches under it ("missing")
     more: int = 0             # categories left out after the entries ("... and 9,990 more")
 
 
@@ -75,10 +77,10 @@ def _swatch(mark, long_side: float = SWATCH) -> tuple[float, float]:
     return (long_side, long_side / a) if a >= 1 else (long_side * a, long_side)
 
 
-def round_values(lo: float, hi: float, most: int = 4) -> list[float]:
+def round_values(lo: float, hi: float, most: int = 4, positive: bool = True) -> list[float]:
     """2 to ``most`` round numbers in [lo, hi] (1, 2, 2.5 or 5 times a power of ten),
-    spread across the range; the range's ends rounded to 2 significant digits if the
-    range is too narrow for round steps."""
+    spread across the range (only those > 0 when ``positive``: sizes); the range's ends
+    rounded to 2 significant digits if the range is too narrow for round steps."""
     if not hi > lo:
         return [float(f"{lo:.2g}")]
     top = int(math.floor(math.log10(hi - lo))) + 1
@@ -86,7 +88,7 @@ def round_values(lo: float, hi: float, most: int = 4) -> list[float]:
     for fewest in (3, 2):   # three or four values read best; two if no round step gives more
         for step in steps:
             ticks = np.arange(math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9) + 1) * step
-            ticks = ticks[ticks > 0]
+            ticks = ticks[ticks > 0] if positive else ticks
             if fewest <= len(ticks) <= most:
                 return [float(f"{t:.6g}") for t in ticks]
     inner = [float(f"{v:.2g}") for v in (lo, hi)]
@@ -97,27 +99,85 @@ def _number(v: float) -> str:
     return f"{v:.6g}"
 
 
-def round_dates(lo: float, hi: float, most: int = 4) -> list[float]:
-    """2 to ``most`` tick times (seconds since 1970, UTC) in [lo, hi], at whole days,
-    months or years when the range allows, else spread evenly."""
+# date tick steps, fine to coarse: (unit, count); "s", "min", "h", "D" are fixed lengths
+DATE_STEPS = (*[("s", k) for k in (1, 5, 15, 30)], *[("min", k) for k in (1, 5, 15, 30)],
+              *[("h", k) for k in (1, 3, 6, 12)], *[("D", k) for k in (1, 2, 7, 14)],
+              *[("M", k) for k in (1, 3, 6)],
+              *[("Y", k) for k in (1, 2, 5, 10, 20, 25, 50, 100, 200, 500, 1000)])
+SECONDS = {"s": 1, "min": 60, "h": 3600, "D": 86400}
+
+
+def _date_steps(lo: float, hi: float, unit: str, count: int, most: int) -> list[float] | None:
+    """Times (s since 1970, UTC) in [lo, hi] at whole multiples of ``count`` ``unit``s; None
+    when there are more than ``most``."""
+    if unit in SECONDS:
+        step = SECONDS[unit] * count
+        first, last = math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9)
+        return None if last - first + 1 > most else [k * float(step) for k in range(first, last + 1)]
     start, end = pd.Timestamp(lo, unit="s"), pd.Timestamp(hi, unit="s")
-    for freq in ("YS", "QS", "MS", "7D", "D", "h", "min", "s"):
-        ticks = pd.date_range(start.ceil("s"), end, freq=freq)
-        if freq in ("7D", "D"):
-            ticks = pd.date_range(start.ceil("D"), end, freq=freq)
-        if 2 <= len(ticks) <= most:
-            return [t.value / 1e9 for t in ticks]
-        if len(ticks) > most:   # too many at this step: every k-th
-            step = -(-len(ticks) // most)
-            return [t.value / 1e9 for t in ticks[::step]]
-    return [lo] if not hi > lo else [lo, hi]
+    every = count * (12 if unit == "Y" else 1)   # in months
+    month = start.year * 12 + start.month - 1
+    month += start > pd.Timestamp(year=start.year, month=start.month, day=1)
+    month += -month % every
+    if (end.year * 12 + end.month - 1 - month) // every + 1 > most:
+        return None
+    out = []
+    while (t := pd.Timestamp(year=month // 12, month=month % 12 + 1, day=1)) <= end:
+        out.append(t.value / 1e9)
+        month += every
+    return out
 
 
-def date_label(seconds: float, span: float) -> str:
-    """A tick time as a date ("2024-01-01"), with the time of day when ``span`` (s) is
-    under two days."""
-    t = pd.Timestamp(seconds, unit="s")
-    return t.strftime("%Y-%m-%d %H:%M" if span < 2 * 86400 else "%Y-%m-%d")
+def _date_label(t: pd.Timestamp, unit: str, span: float) -> str:
+    if unit == "Y":
+        return f"{t:%Y}"
+    if unit == "M":
+        return f"{t:%b %Y}"
+    if unit == "D":
+        return f"{t.day} {t:%b %Y}"
+    if unit == "s":
+        return f"{t:%H:%M:%S}"
+    return f"{t:%H:%M}" if span < 86400 else f"{t.day} {t:%b} {t:%H:%M}"
+
+
+def date_ticks(lo: float, hi: float, most: int = 4) -> list[tuple[float, str]]:
+    """``[(time, label), ...]``: 2 to ``most`` times in [lo, hi] (s since 1970, UTC) at the
+    finest round step that gives no more (whole seconds ... years), labelled at that
+    step's unit ("1970", "Jan 2024", "3 Jan 2024", "14:30"); one round time when no step
+    gives two that few, the start when none is in the range."""
+    single = None
+    for unit, count in DATE_STEPS:
+        times = _date_steps(lo, hi, unit, count, most)
+        if times is not None and len(times) >= 2:
+            return [(t, _date_label(pd.Timestamp(t, unit="s"), unit, hi - lo)) for t in times]
+        if times and single is None:
+            single = [(times[0], _date_label(pd.Timestamp(times[0], unit="s"), unit, hi - lo))]
+    if single is not None:
+        return single
+    t = pd.Timestamp(lo, unit="s")
+    return [(lo, f"{t.day} {t:%b %Y %H:%M:%S}")]
+
+
+def spaced_ticks(lo: float, hi: float, temporal: bool, length: float, most: int = 5,
+                 font: float = FONT, where=None) -> list[tuple[float, str]]:
+    """``[(value, label), ...]`` of a scale ``length`` px long over [lo, hi]: the most ticks
+    (at most ``most``) whose labels, centred on their ticks at ``font`` px, stay
+    ``TICK_GAP`` px apart. ``where(value)``: the fraction of the length a value is at
+    (default linear)."""
+    where = where or (lambda v: 0.5 if hi <= lo else (v - lo) / (hi - lo))
+    for count in range(most, 1, -1):
+        ticks = (date_ticks(lo, hi, count) if temporal else
+                 [(v, _number(v)) for v in round_values(lo, hi, count, positive=False)])
+        if apart(ticks, length, font, where):
+            return ticks
+    return ticks[:1]
+
+
+def apart(ticks, length: float, font: float, where) -> bool:
+    """True when the labels of ``ticks`` (centred on ``where(value) * length``) keep
+    ``TICK_GAP`` px between them."""
+    at = sorted((where(v) * length, text_width(label, font)) for v, label in ticks)
+    return all(x2 - x1 >= (w1 + w2) / 2 + TICK_GAP for (x1, w1), (x2, w2) in zip(at, at[1:]))
 
 
 def neutral(layer, units, i) -> str | None:
@@ -171,12 +231,11 @@ def _color_sections(rows, layers, units) -> list[Section]:
             v = v[np.isfinite(v)]
             lo, hi = float(v.min()), float(v.max())
             sec = Section(f"Color: {clip(c)}", bar=(lo, hi))
-            if is_temporal(series):
-                sec.entries = [Entry("color", _number(t), date_label(t, hi - lo))
-                               for t in round_dates(lo, hi)]
-            else:
-                ticks = round_values(lo, hi) if hi > lo else [lo]
-                sec.entries = [Entry("color", _number(t), _number(t)) for t in ticks]
+            sec.entries = [Entry("color", _number(t), label) for t, label in
+                           spaced_ticks(lo, hi, is_temporal(series), BAR[0])]
+            if series.isna().any():   # drawn grey, as a text column's missing values are
+                sec.entries.append(Entry("color", MISSING, MISSING, mark, MISSING_COLOR,
+                                         *_swatch(mark)))
         else:
             palette = palette_for(series)
             sec = Section(f"Color: {clip(c)}")

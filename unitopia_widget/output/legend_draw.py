@@ -7,11 +7,11 @@ of definitions in the block's own ``<defs>`` (ids ``legend-d<k>``).
 """
 from __future__ import annotations
 
-import unicodedata
 from xml.sax.saxutils import escape, quoteattr
 
 from ..design.encodings import SEQUENTIAL
-from .legend import BAR, CHAR_W, FONT, PAD, TITLE_FONT
+from .legend import BAR, FONT, PAD, TITLE_FONT
+from .text import text_width
 
 TEXT = 'font-family="sans-serif" fill="#222"'
 
@@ -19,31 +19,6 @@ TEXT = 'font-family="sans-serif" fill="#222"'
 def _n(v: float) -> str:
     s = f"{float(v):.3f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
-
-
-# advance widths of ASCII 32..126 in DejaVu Sans (the widest common sans-serif, what the
-# PNG export draws with), in font sizes; bold runs about 12% wider
-_ADVANCE = (0.32, 0.4, 0.46, 0.84, 0.64, 0.95, 0.78, 0.27, 0.39, 0.39, 0.5, 0.84, 0.32, 0.36,
-            0.32, 0.34, *[0.64] * 10, 0.34, 0.34, 0.84, 0.84, 0.84, 0.53, 1.0, 0.68, 0.69, 0.7,
-            0.77, 0.63, 0.58, 0.77, 0.75, 0.29, 0.29, 0.66, 0.56, 0.86, 0.75, 0.79, 0.6, 0.79,
-            0.69, 0.63, 0.61, 0.73, 0.68, 0.99, 0.69, 0.61, 0.69, 0.39, 0.34, 0.39, 0.84, 0.5,
-            0.5, 0.61, 0.63, 0.55, 0.63, 0.62, 0.35, 0.63, 0.63, 0.28, 0.28, 0.58, 0.28, 0.97,
-            0.63, 0.61, 0.63, 0.63, 0.41, 0.52, 0.39, 0.63, 0.59, 0.82, 0.59, 0.59, 0.52, 0.64,
-            0.34, 0.64, 0.84)
-BOLD = 1.12
-
-
-def text_width(text: str, size: float = FONT, bold: bool = False) -> float:
-    """px width of ``text`` at font ``size`` px: per-character advances, non-ASCII at
-    ``CHAR_W`` (wide East Asian characters a full size)."""
-    em = 0.0
-    for ch in text:
-        code = ord(ch)
-        if 32 <= code < 127:
-            em += _ADVANCE[code - 32]
-        else:
-            em += 1.0 if unicodedata.east_asian_width(ch) in "WF" else CHAR_W
-    return em * size * (BOLD if bold else 1.0)
 
 
 class _Defs:
@@ -62,30 +37,45 @@ class _Defs:
                 f'{_n(y)}) scale({w / bw:.6g} {h / bh:.6g})"/>')
 
 
+def _bar(span, ticks, defs: _Defs, x0: float, y: float) -> tuple[list[str], float, float]:
+    """A colour bar over ``span`` (lo, hi) with ``ticks`` at canvas (x0, y), moved right as
+    far as its first label reaches left of it: ``(parts, width, y below its labels)``."""
+    lo, hi = span
+    bw, bh = BAR
+    at = [(0.0 if hi <= lo else (float(e.value) - lo) / (hi - lo)) * bw for e in ticks]
+    half = [text_width(e.label) / 2 for e in ticks]
+    left = max([h - x for x, h in zip(at, half)] + [0.0])
+    right = max([x + h - bw for x, h in zip(at, half)] + [0.0])
+    x0 += left
+    gid = f"legend-bar{len(defs.parts)}"
+    stops = "".join(f'<stop offset="{i / (len(SEQUENTIAL) - 1):.4g}" stop-color="{c}"/>'
+                    for i, c in enumerate(SEQUENTIAL))
+    defs.parts.append(f'<linearGradient id="{gid}">{stops}</linearGradient>')
+    out = [f'<rect class="legend-bar" x="{_n(x0)}" y="{_n(y)}" width="{bw}" height="{bh}" '
+           f'fill="url(#{gid})"/>']
+    for e, x in zip(ticks, at):
+        tx = x0 + x
+        out.append(f'<g class="legend-entry" data-channel="color" data-value={quoteattr(e.value)}>'
+                   f'<line x1="{_n(tx)}" y1="{_n(y)}" x2="{_n(tx)}" y2="{_n(y + bh + 3)}" '
+                   f'stroke="#222"/><text x="{_n(tx)}" y="{_n(y + bh + 4 + FONT)}" '
+                   f'font-size="{FONT}" text-anchor="middle" {TEXT}>{escape(e.label)}</text></g>')
+    return out, left + bw + right, y + bh + 4 + FONT
+
+
 def _section(sec, defs: _Defs, x0: float, y0: float) -> tuple[list[str], float, float]:
     out = [f'<text class="legend-title" x="{_n(x0)}" y="{_n(y0 + TITLE_FONT)}" '
            f'font-size="{TITLE_FONT}" font-weight="bold" {TEXT}>{escape(sec.title)}</text>']
     y = y0 + TITLE_FONT + PAD / 2
     width = text_width(sec.title, TITLE_FONT, bold=True)
-    if sec.bar is not None:
-        lo, hi = sec.bar
-        bw, bh = BAR
-        gid = f"legend-bar{len(defs.parts)}"
-        stops = "".join(f'<stop offset="{i / (len(SEQUENTIAL) - 1):.4g}" stop-color="{c}"/>'
-                        for i, c in enumerate(SEQUENTIAL))
-        defs.parts.append(f'<linearGradient id="{gid}">{stops}</linearGradient>')
-        out.append(f'<rect class="legend-bar" x="{_n(x0)}" y="{_n(y)}" width="{bw}" height="{bh}" '
-                   f'fill="url(#{gid})"/>')
-        for e in sec.entries:
-            t = 0.0 if hi <= lo else (float(e.value) - lo) / (hi - lo)
-            tx = x0 + t * bw
-            out.append(f'<g class="legend-entry" data-channel="color" data-value={quoteattr(e.value)}>'
-                       f'<line x1="{_n(tx)}" y1="{_n(y)}" x2="{_n(tx)}" y2="{_n(y + bh + 3)}" '
-                       f'stroke="#222"/><text x="{_n(tx)}" y="{_n(y + bh + 4 + FONT)}" '
-                       f'font-size="{FONT}" text-anchor="middle" {TEXT}>{escape(e.label)}</text></g>')
-        return out, max(width, bw + text_width(sec.entries[-1].label) / 2), y + bh + 4 + FONT + PAD - y0
-    mark_w = max(e.w for e in sec.entries)
-    for e in sec.entries:
+    rows = sec.entries
+    if sec.bar is not None:   # the bar with its ticks (entries without a mark), then swatches
+        rows = [e for e in sec.entries if e.mark is not None]
+        parts, bar_w, y = _bar(sec.bar, [e for e in sec.entries if e.mark is None], defs, x0, y)
+        out.extend(parts)
+        width = max(width, bar_w)
+        y += PAD / 2 if rows else 0.0
+    mark_w = max((e.w for e in rows), default=0.0)
+    for e in rows:
         row_h = max(e.h, FONT + 2)
         cy = y + row_h / 2
         attrs = (f' data-channel="{e.channel}"' if e.channel else ' data-channel="unit"') + \

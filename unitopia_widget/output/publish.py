@@ -6,6 +6,8 @@
 """
 from __future__ import annotations
 
+import numpy as np
+
 from ..design.page import CAPTION_CHARS, TITLE_CHARS, check_text, legend_spec
 from . import legend as legend_mod, legend_draw
 from .composite import chart_png
@@ -23,9 +25,24 @@ def any_bound(chart) -> bool:
                for layer in chart.layers for v in layer.encodings.values())
 
 
-def sections(chart, units):
+def sections(chart, units, room=None):
+    """The legend's sections; ``room``: the height a size section's marks may take (default
+    the canvas height)."""
     return legend_mod.sections(chart.df, chart.layers, units, chart.boxes(units),
-                               room=chart.canvas[1])
+                               room=chart.canvas[1] if room is None else room)
+
+
+def mark_boxes(table) -> dict:
+    """Layer name -> ``(k, 4)`` boxes ``x0, y0, x1, y1`` (canvas px) of its placed marks,
+    turned as drawn, from the placements ``table``."""
+    a = np.radians(table["angle"].to_numpy(dtype=float))
+    w, h = table["width"].to_numpy(dtype=float), table["height"].to_numpy(dtype=float)
+    hw = (np.abs(w * np.cos(a)) + np.abs(h * np.sin(a))) / 2
+    hh = (np.abs(w * np.sin(a)) + np.abs(h * np.cos(a))) / 2
+    x, y = table["x"].to_numpy(dtype=float), table["y"].to_numpy(dtype=float)
+    box = np.stack([x - hw, y - hh, x + hw, y + hh], axis=1)
+    names = table["layer"].to_numpy()
+    return {name: box[names == name] for name in dict.fromkeys(names)}
 
 
 def legend_image(chart) -> tuple[str, float, float] | None:
@@ -74,9 +91,12 @@ def _drawing(chart, units, legend, title, caption, outline, axes) -> tuple:
     if axes and not drawn:
         raise ValueError("axes=True draws the axes of x= and y=, but the layout binds neither; "
                          "bind a layer's x= or y= to a column and run the layout again")
-    page = compose(chart.canvas, sections(chart, units) if show else None, position, title, caption)
-    under = (outlines(chart.layers, chart.canvas) if outline else "") \
-        + (axes_svg(drawn, chart.canvas) if axes else "") \
+    axes_drawn, axes_box = axes_svg(drawn, mark_boxes(chart.laid.placements)) if axes else ("", None)
+    # above or below the chart a size section shows its two ends once its marks grow tall
+    room = chart.canvas[1] / 4 if position in ("top", "bottom") else None
+    page = compose(chart.canvas, sections(chart, units, room) if show else None, position, title,
+                   caption, axes_box)
+    under = (outlines(chart.layers, chart.canvas) if outline else "") + axes_drawn \
         + labels_svg(chart.layers, chart.canvas, chart.piles)
     return (chart.canvas, chart.laid.placements, chart.layers, units.colors, chart.titles(units),
             chart.background, page, under)

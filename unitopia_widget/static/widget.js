@@ -1829,13 +1829,19 @@ function statusLabel(status, stale, kernel = "live") {
   if (stale && s !== "running" && s !== "error") return { text: "changed: run again", state: "stale" };
   return { text: s, state: s };
 }
+var PHASES = { settle: "settling", polish: "polishing" };
 function progressBar(p) {
   const it = Number(p && p.iteration) || 0;
   const max = Number(p && p.max_iterations) || 0;
   const done = !!(p && p.done);
+  const seconds = Number(p && p.seconds);
   const parts = [];
+  if (done && Number.isFinite(seconds)) {
+    parts.push(`${p.stopped ? "stopped after" : "done in"} ${seconds.toFixed(1)} s`);
+  } else if (!done && p && PHASES[p.phase]) {
+    parts.push(PHASES[p.phase]);
+  }
   if (max) parts.push(`iteration ${it} / ${max}`);
-  if (p && p.loss != null && Number.isFinite(Number(p.loss))) parts.push(`loss ${Number(p.loss).toPrecision(4)}`);
   return { max: max || 1, value: done ? max || 1 : Math.min(it, max || 1), hidden: !max, detail: parts.join(" · ") };
 }
 

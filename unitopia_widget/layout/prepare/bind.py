@@ -31,17 +31,20 @@ def layer_rows(df: pd.DataFrame, layer) -> pd.DataFrame:
     return df.loc[rows["index"]]
 
 
-def bind(df: pd.DataFrame, layers) -> Units:
-    """Encode all layers. Raises ValueError for empty layers or bad bindings."""
+def bind(df: pd.DataFrame, layers, warn: bool = True) -> Units:
+    """Encode all layers. Raises ValueError for empty layers or bad bindings. ``warn``:
+    warn about colour columns with missing values or more categories than colours (False
+    when the caller has warned about the same design already)."""
     color_cols = {layer.encodings["color"] for layer in layers
                   if isinstance(layer.encodings["color"], str) and layer.encodings["color"] in df.columns}
     palettes = {}
     for c in color_cols:
         check_column(df, "color", c)
-        if not is_continuous(df[c]):
+        if warn:   # numbers and text alike: missing values are drawn grey
             missing_warning(df[c], c)
+        if not is_continuous(df[c]):
             try:
-                palettes[c] = palette_for(df[c], c)
+                palettes[c] = palette_for(df[c], c if warn else None)
             except TypeError:
                 raise unhashable("color", c, df[c]) from None
     # numeric colours: one scale per column, shared by the layers (as the palettes are)

@@ -32,16 +32,16 @@ BAND_PULL = 20.0       # the pull back into a band, times the pull towards a num
 BOUND_COST = 10.0      # start: a px off the target costs as much as this many off the middle
 DODGE_STEP = 0.5       # start: spot spacing in median footprint radii (the optimiser refines)
 BAND_COST = 1000.0     # start: a px out of a band costs as much as this many off a number
+BAND_GAP = 0.2         # the share of each band kept empty between bands (half at each side)
 
 
 @dataclass
 class Axis:
     """A bound axis of one layer, as drawn by the export (``output/axes``).
 
-    ``lo``, ``hi``: canvas px of the extent's ends along the axis; ``cross``, ``far``:
-    the container's edges on the other axis, the near one (bottom for x, left for y) where
-    the axis line stands, and the far one (top, right) where it goes when the canvas leaves
-    no room at the near one."""
+    ``lo``, ``hi``: canvas px of the extent's ends along the axis; ``cross``: the
+    container's edge on the other axis (bottom for x, left for y) beyond which the axis
+    line stands."""
 
     layer: str
     channel: str
@@ -49,7 +49,6 @@ class Axis:
     lo: float
     hi: float
     cross: float
-    far: float
 
     def at(self, fraction):
         """Canvas px of ``fraction`` (array or float) of the extent."""
@@ -109,16 +108,16 @@ def anchors(units, layers, canvas, radius, rho: float):
         idx = np.nonzero(units.layer == i)[0]
         region = Region(layer.region.coverage(canvas, rho), rho)
         reach = float(np.median(radius[idx]))
-        x0, y0, x1, y1 = region.bbox
+        x0, _, _, y1 = region.bbox
         for dim, channel in enumerate(POSITION_CHANNELS):
             if channel not in scales:
                 continue
             lo, hi = extent(region, dim, reach)
-            axis = Axis(layer.name, channel, scales[channel], lo, hi, *((y1, y0) if dim == 0
-                                                                         else (x0, x1)))
+            axis = Axis(layer.name, channel, scales[channel], lo, hi, y1 if dim == 0 else x0)
             axes.append(axis)
             target[idx, dim] = axis.at(units.position[idx, dim])
-            tol[idx, dim] = np.maximum(units.band[idx, dim] * (hi - lo) - radius[idx], 0.0)
+            inner = units.band[idx, dim] * (1.0 - BAND_GAP) * (hi - lo)   # 0 for numbers
+            tol[idx, dim] = np.maximum(inner - radius[idx], 0.0)
     return target, tol, mask, axes
 
 
@@ -154,9 +153,12 @@ def capped_scales(units, layers, canvas, group_scale, group_free, scale_group, r
                 else:
                     count = int(np.clip((hi - lo) / (BIN * reach), 1, MAX_BINS))
                 unit_bin = np.clip((units.position[idx, dim] * count).astype(int), 0, count - 1)
-                pixel_bin = np.clip(((pixels[:, dim] - lo) / max(hi - lo, 1e-9) * count)
-                                    .astype(int), 0, count - 1)
-                room = np.bincount(pixel_bin, minlength=count) / rho ** 2
+                along = (pixels[:, dim] - lo) / max(hi - lo, 1e-9) * count
+                pixel_bin = np.clip(along.astype(int), 0, count - 1)
+                inside = np.ones(len(along))
+                if scales[channel].kind == "band":   # the gaps between bands hold no marks
+                    inside = np.abs(along - pixel_bin - 0.5) <= (1.0 - BAND_GAP) / 2
+                room = np.bincount(pixel_bin, weights=inside, minlength=count) / rho ** 2
                 need = np.bincount(unit_bin, weights=np.pi * (r1[idx] * s) ** 2, minlength=count)
                 used = need > 0
                 worst = min(worst, float(np.min(PACKED * room[used] / need[used])))
