@@ -107,7 +107,7 @@ def test_designs_you_can_rebuild_run_as_written(tmp_path, monkeypatch):
 
 def test_the_axis_chart_runs_on_the_real_table(tmp_path, monkeypatch):
     pytest.importorskip("vega_datasets")
-    block = re.findall(r"```python\n(.*?)```", section("A chart from a real table"), re.S)[0]
+    block = re.findall(r"```python\n(.*?)```", section("Axes beside the marks"), re.S)[0]
     assert "data.cars()" in block and "axes=True" in block
     monkeypatch.chdir(tmp_path)
     scope = {"uw": uw}
