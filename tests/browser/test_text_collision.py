@@ -49,6 +49,9 @@ GALLERY = [
     ("long category names, legend on the right, y axis of bands",
      dict(mark="circle", color="Origin (long)", y="Origin (long)", x="Acceleration"),
      dict(axes=True, legend="right")),
+    ("three layers by origin sharing a numeric x and a y of bands",
+     dict(mark="circle", by="Origin", color="Origin", size="Weight_in_lbs", x="Horsepower",
+          y="Origin", dropna=True), dict(axes=True, legend="bottom")),
     ("piles in columns, long names, title, caption, legend at the bottom",
      dict(mark="circle", by="Origin (long)", color="Origin (long)", size="Weight_in_lbs"),
      dict(legend="bottom", title="Cars by origin", caption="One mark per car, sized by its "
@@ -156,7 +159,8 @@ def test_no_text_crosses_text_or_marks_and_no_axis_crosses_a_mark(browser, galle
         assert len(m["texts"]) >= 5 and len(m["marks"]) >= 100, name
         chart_args, export_args = next(g[1:] for g in GALLERY if g[0] == name)
         assert bool(m["lines"]) == export_args.get("axes", False)
-        piles = cars()[chart_args["by"]].nunique() if "by" in chart_args else 0
+        piled = "by" in chart_args and not {"x", "y"} & set(chart_args)   # by= with x= places
+        piles = cars()[chart_args["by"]].nunique() if piled else 0
         assert m["piles"] == piles, name   # each pile's label is measured
     bad = {name: p[:5] for name, p in found.items() if p}
     assert not bad, bad
