@@ -7,10 +7,8 @@
 import { h } from "./dom.js";
 
 export function createAxes(model, stage) {
-  const img = h("img", { class: "ut-axes", dataset: { role: "axes" }, alt: "axes", draggable: false, hidden: true });
-  const paper = h("div", { class: "ut-axes-paper", hidden: true });
-  stage.el.prepend(paper);
-  stage.bg.after(img); // over a background image, under the containers and marks
+  const img = h("img", { class: "ut-axes", dataset: { role: "axes" }, alt: "axes", draggable: false });
+  const paper = h("div", { class: "ut-axes-paper" });
 
   /** The trait's box [x, y, w, h] in canvas px and its source, or null. */
   const trait = () => {
@@ -24,9 +22,14 @@ export function createAxes(model, stage) {
   function update([W, H]) {
     const a = trait();
     const m = a ? [-a.box[0], -a.box[1], a.box[0] + a.box[2] - W, a.box[1] + a.box[3] - H].map((v) => Math.max(0, Math.ceil(v))) : [0, 0, 0, 0];
-    img.hidden = paper.hidden = !a;
+    if (!a) {   // no axes: neither is in the stage
+      img.remove();
+      paper.remove();
+    } else if (img.parentNode !== stage.el) {
+      stage.el.prepend(paper);
+      stage.bg.after(img); // over a background image, under the containers and marks
+    }
     if (a && img.getAttribute("src") !== a.src) img.src = a.src;
-    if (!a) img.removeAttribute("src");
     stage.margin = m;
   }
 

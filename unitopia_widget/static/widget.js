@@ -2564,10 +2564,8 @@ function createPileLabels(stage) {
 
 // src/axes-view.js
 function createAxes(model, stage) {
-  const img = h("img", { class: "ut-axes", dataset: { role: "axes" }, alt: "axes", draggable: false, hidden: true });
-  const paper = h("div", { class: "ut-axes-paper", hidden: true });
-  stage.el.prepend(paper);
-  stage.bg.after(img);
+  const img = h("img", { class: "ut-axes", dataset: { role: "axes" }, alt: "axes", draggable: false });
+  const paper = h("div", { class: "ut-axes-paper" });
   const trait = () => {
     const a = model.get("axes_image");
     const box = a ? [a.x, a.y, a.width, a.height].map(Number) : [];
@@ -2577,9 +2575,14 @@ function createAxes(model, stage) {
   function update([W, H]) {
     const a = trait();
     const m = a ? [-a.box[0], -a.box[1], a.box[0] + a.box[2] - W, a.box[1] + a.box[3] - H].map((v) => Math.max(0, Math.ceil(v))) : [0, 0, 0, 0];
-    img.hidden = paper.hidden = !a;
+    if (!a) {
+      img.remove();
+      paper.remove();
+    } else if (img.parentNode !== stage.el) {
+      stage.el.prepend(paper);
+      stage.bg.after(img);
+    }
     if (a && img.getAttribute("src") !== a.src) img.src = a.src;
-    if (!a) img.removeAttribute("src");
     stage.margin = m;
   }
   function place() {
