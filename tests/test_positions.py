@@ -185,3 +185,36 @@ def test_an_axis_stands_outside_its_container_and_its_marks_with_its_labels():
     assert box[3] > 476 + 2 * 11                                 # labels and title under it
 
 
+
+
+def test_an_axis_shared_by_several_layers_stands_clear_of_every_layers_marks():
+    from unitopia_widget.design.positions import Scale
+    from unitopia_widget.layout.prepare.positions import Axis
+    from unitopia_widget.output.axes import axes_svg
+    bands = Scale("k", "band", ("a", "b"))
+    marks = {"a": np.array([[120.0, 60, 160, 100]]),     # x0, y0, x1, y1
+             "b": np.array([[80.0, 420, 120, 470]])}     # lower and further left than a's
+    for channel, cross, edge in (("x", 460, 'y1="476.0"'), ("y", 100, 'x1="74.0"')):
+        both = [Axis(name, channel, bands, 50, 450, cross=cross) for name in ("a", "b")]
+        svg, _ = axes_svg(both, marks)
+        assert svg.count('<g class="axis"') == 1 and edge in svg   # drawn once, past b's marks
+        other = [Axis("a", channel, bands, 50, 450, cross=cross),
+                 Axis("b", channel, bands, 50, 450, cross=cross + 300)]
+        assert axes_svg(other, marks)[0].count('<g class="axis"') == 2   # its own extent: its own
+
+
+def test_the_widget_sends_the_axes_of_the_shown_layout_as_a_sanitised_image():
+    import base64
+    rng = np.random.default_rng(0)
+    df = pd.DataFrame({"v": rng.normal(0, 1, 40), "k": np.repeat(["a", "b"], 20)})
+    w = uw.UnitoPia(df, mark="circle", x="v", color="k", canvas=(300, 200), iterations=30)
+    assert w.axes_image == {}                                     # no layout yet: no axes
+    w.run(wait=True)
+    image = w.axes_image
+    svg = base64.b64decode(image["src"].removeprefix("data:image/svg+xml;base64,")).decode()
+    assert '<g class="axis" data-channel="x"' in svg and ">v</text>" in svg and "<script" not in svg
+    assert f'viewBox="{image["x"]:.1f} {image["y"]:.1f} {image["width"]:.1f} {image["height"]:.1f}"' in svg
+    lowest = float((w.placements["y"] + w.placements["height"] / 2).max())
+    assert image["y"] >= lowest and image["height"] > 2 * 11     # under the marks, labels in it
+    w.layer(0).set(x=None)                                        # unbound: cleared at once
+    assert w.axes_image == {}

@@ -2,7 +2,8 @@
 // marks, overlay of emitters/forces/handles) inside one element that takes the
 // pointer events (data-role="stage"). The logical size is design.canvas; the stage
 // takes the cell's width at the canvas's aspect ratio (no taller than most of the
-// window) and draws at devicePixelRatio.
+// window) and draws at devicePixelRatio. A margin (canvas px: left, top, right, bottom)
+// leaves room around the canvas for what is drawn past it (the axes).
 import { h, listen } from "./dom.js";
 
 export function createStage(signal) {
@@ -17,22 +18,27 @@ export function createStage(signal) {
     el, wrap, bg, tooltip,
     canvases: { scene, marks, over },
     size: [0, 0], // set by the first layout()
+    margin: [0, 0, 0, 0], // canvas px left, top, right, bottom: room outside the canvas
     scale: 1,
     dpr: 1,
     onResize: () => {},
   };
 
-  /** Sizes the canvases for a logical size; returns true when anything changed. */
+  let shownMargin = "";
+  /** Sizes the canvases for a logical size and the margin; returns true when anything changed. */
   stage.layout = (size) => {
     const [W, H] = size;
-    const avail = wrap.clientWidth || W;
-    const tall = Math.max(240, 0.85 * (window.innerHeight || H)); // the whole stage stays in view
-    const scale = Math.min(avail / W, tall / H);
+    const [l, t, r, b] = stage.margin;
+    const avail = wrap.clientWidth || W + l + r;
+    const tall = Math.max(240, 0.85 * (window.innerHeight || H + t + b)); // the whole stage stays in view
+    const scale = Math.min(avail / (W + l + r), tall / (H + t + b));
     const dpr = window.devicePixelRatio || 1;
-    if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1]) return false;
+    const margin = `${t * scale}px ${r * scale}px ${b * scale}px ${l * scale}px`;
+    if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1] && margin === shownMargin) return false;
     Object.assign(stage, { size: [W, H], scale, dpr });
     el.style.width = `${W * scale}px`;
     el.style.height = `${H * scale}px`;
+    el.style.margin = shownMargin = margin;
     for (const c of [scene, marks, over]) {
       c.width = Math.max(1, Math.round(W * scale * dpr));
       c.height = Math.max(1, Math.round(H * scale * dpr));

@@ -20,6 +20,7 @@ import { createFieldsPanel } from "./panels/fields.js";
 import { createMarkPanel } from "./panels/mark.js";
 import { createLegend } from "./legend-view.js";
 import { createPileLabels } from "./pile-labels.js";
+import { createAxes } from "./axes-view.js";
 import { copyText, download } from "./export.js";
 import { createPageText, createToggles, foldPanels, guidesVisible } from "./workspace.js";
 import { createReplay } from "./replay-control.js";
@@ -97,6 +98,8 @@ export function renderView({ model, el, signal }) {
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
   const pileLabels = createPileLabels(stage);
+  const axes = createAxes(model, stage);
+  const drawAxes = () => (axes.update(readDesign(model).canvas || [1, 1]), axes.place(), redraw("scene"));
   const drawLabels = () => pileLabels.update(list(model, "pile_labels"), readDesign(model).canvas || [1, 1]);
   const pageText = createPageText(stage.wrap);
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
@@ -129,6 +132,7 @@ export function renderView({ model, el, signal }) {
       ["scene", "over", "marks"].forEach((w) => dirty.add(w));
       painter.cancel();
       legend.place();
+      axes.place();
     }
     if (interp.step(now)) dirty.add("marks");
     if (replay.step(now)) dirty.add("marks");
@@ -166,6 +170,7 @@ export function renderView({ model, el, signal }) {
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     pageText.update(design);
     drawLabels();
+    drawAxes();
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -219,6 +224,7 @@ export function renderView({ model, el, signal }) {
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
   onModel(model, ["change:pile_labels"], drawLabels, signal);
+  onModel(model, ["change:axes_image"], drawAxes, signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

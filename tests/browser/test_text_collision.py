@@ -23,6 +23,8 @@ def cars(n: int = 150):
     table = data.cars()
     table = table.iloc[np.linspace(0, len(table) - 1, n).astype(int)].reset_index(drop=True)
     table["Origin (long)"] = table["Origin"].map(LONG)
+    table["Origin and cylinders"] = table["Origin (long)"] + ", " + \
+        table["Cylinders"].astype(str) + " cylinders"
     return table
 
 
@@ -47,6 +49,28 @@ GALLERY = [
     ("long category names, legend on the right, y axis of bands",
      dict(mark="circle", color="Origin (long)", y="Origin (long)", x="Acceleration"),
      dict(axes=True, legend="right")),
+    ("three layers by origin sharing a numeric x and a y of bands",
+     dict(mark="circle", by="Origin", color="Origin", size="Weight_in_lbs", x="Horsepower",
+          y="Origin", dropna=True), dict(axes=True, legend="bottom")),
+    ("piles in columns, long names, title, caption, legend at the bottom",
+     dict(mark="circle", by="Origin (long)", color="Origin (long)", size="Weight_in_lbs"),
+     dict(legend="bottom", title="Cars by origin", caption="One mark per car, sized by its "
+          "weight; each pile's area is the total weight of its cars.")),
+    ("piles in rows, long names, title, caption, legend at the bottom",
+     dict(mark="circle", by="Origin (long)", color="Origin (long)", piles="rows"),
+     dict(legend="bottom", title="Cars by origin", caption="One mark per car.")),
+    ("piles in a grid, numeric colour with missing values, legend at the bottom",
+     dict(mark="square", by="Origin (long)", color="Horsepower", piles="grid"),
+     dict(legend="bottom", title="Horsepower by origin", caption="Grey: horsepower unknown.")),
+    ("piles in columns, short names, legend on the right",
+     dict(mark="circle", by="Origin", color="Origin", size="Weight_in_lbs"),
+     dict(legend="right", title="Cars by origin", caption="Sized by weight.")),
+    ("nine piles in columns, long names, legend on top",
+     dict(mark="circle", by="Origin and cylinders", color="Origin"),
+     dict(legend="top", title="Cars by origin and cylinders", caption="One mark per car.")),
+    ("nine piles in a grid, long names, legend on the left",
+     dict(mark="circle", by="Origin and cylinders", color="Origin", piles="grid"),
+     dict(legend="left", caption="One mark per car.")),
 ]
 
 MEASURE = """(svg) => {
@@ -70,7 +94,8 @@ MEASURE = """(svg) => {
         return [a.x, a.y, b.x, b.y];
     });
     const v = svg.viewBox.baseVal;
-    return {texts, marks, lines, view: [v.x, v.y, v.x + v.width, v.y + v.height]};
+    const piles = svg.querySelectorAll("g.pile-labels > text.pile-label").length;
+    return {texts, marks, lines, piles, view: [v.x, v.y, v.x + v.width, v.y + v.height]};
 }"""
 
 SLACK = 0.5   # px: boxes that share less than this do not touch
@@ -132,6 +157,10 @@ def test_no_text_crosses_text_or_marks_and_no_axis_crosses_a_mark(browser, galle
     found = {name: problems(m) for (name, _), m in zip(gallery, measured)}
     for (name, _), m in zip(gallery, measured):   # the checks see what they should
         assert len(m["texts"]) >= 5 and len(m["marks"]) >= 100, name
-        assert bool(m["lines"]) == GALLERY[[g[0] for g in GALLERY].index(name)][2].get("axes", False)
+        chart_args, export_args = next(g[1:] for g in GALLERY if g[0] == name)
+        assert bool(m["lines"]) == export_args.get("axes", False)
+        piled = "by" in chart_args and not {"x", "y"} & set(chart_args)   # by= with x= places
+        piles = cars()[chart_args["by"]].nunique() if piled else 0
+        assert m["piles"] == piles, name   # each pile's label is measured
     bad = {name: p[:5] for name, p in found.items() if p}
     assert not bad, bad

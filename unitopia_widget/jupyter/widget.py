@@ -24,7 +24,7 @@ from ..design.encodings import rgba
 from .keep import DesignFile, KeptDesign
 from .pins import Pinning
 from .notebook import StaticDisplay
-from ..output.publish import legend_image
+from ..output.publish import axes_image, legend_image
 from ..output.pile_labels import labels as pile_labels
 from .runner import Runner
 from ..layout.prepare.problem import Cancelled
@@ -100,6 +100,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
     stale = t.Bool(False).tag(sync=True)               #: design changed since the shown layout
     legend_image = t.Dict().tag(sync=True)             #: {} or {"src": svg data URL, "width", "height"}
     pile_labels = t.List(t.Dict()).tag(sync=True)      #: [{"text", "x", "y", "anchor"}] of the piles
+    axes_image = t.Dict().tag(sync=True)               #: {} or {"src": svg data URL, "x", "y", "width", "height"}
     selected_units = t.List(t.Int()).tag(sync=True)    #: unit indices selected in the widget
     pinned_units = t.List(t.Int()).tag(sync=True)      #: unit indices the pins hold
     _session_id = t.Unicode("").tag(sync=True)         #: keys the views' shared undo history
@@ -332,7 +333,8 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
                     self.set_trait(name, value)
 
     def _push_extras(self, static: bool = False) -> None:
-        """After a design change: the legend image; after a run (``static``) also the
+        """After a design change: the legend, pile labels and axes (of the shown layout,
+        none once x= and y= are unbound); after a run (``static``) also the
         notebook's static image (rendering it at every edit would slow big charts down)."""
         try:
             image = legend_image(self._chart)
@@ -346,6 +348,11 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         except ValueError:   # a container off the canvas: refused by the next run, no labels
             labels = []
         self._quiet(pile_labels=labels)
+        axes = axes_image(self._chart)   # the shown layout's, as its marks are
+        self._quiet(axes_image={} if axes is None else {
+            "src": "data:image/svg+xml;base64," + base64.b64encode(axes[0].encode()).decode(),
+            "x": axes[1][0], "y": axes[1][1],
+            "width": round(axes[1][2] - axes[1][0], 1), "height": round(axes[1][3] - axes[1][1], 1)})
         if not static:
             return
         try:

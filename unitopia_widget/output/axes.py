@@ -31,16 +31,22 @@ DESCENT = 0.3      # of a font size, below a label's baseline
 def axes_svg(axes, marks: dict) -> tuple[str, tuple | None]:
     """``(svg, box)``: every distinct axis in ``axes``, and the box ``(x0, y0, x1, y1)``
     (canvas px) they take (None without axes). ``marks``: layer name -> ``(k, 4)`` boxes
-    ``x0, y0, x1, y1`` of its placed marks (canvas px), which each axis stands clear of."""
-    seen, out, boxes = set(), [], []
+    ``x0, y0, x1, y1`` of its placed marks (canvas px). Layers that share an axis (the
+    layers ``by=`` or a colour made over one extent) have it drawn once, clear of all
+    their marks."""
+    shared = {}
     for axis in axes:
         key = (axis.channel, axis.scale.column, round(axis.lo, 1), round(axis.hi, 1),
                round(axis.cross, 1))
-        if key not in seen:
-            seen.add(key)
-            svg, box = _axis(axis, marks.get(axis.layer, np.zeros((0, 4))))
-            out.append(svg)
-            boxes.append(box)
+        shared.setdefault(key, []).append(axis)
+    out, boxes = [], []
+    for group in shared.values():
+        layers = dict.fromkeys(a.layer for a in group)
+        clear = np.concatenate([np.zeros((0, 4)), *(marks.get(name, np.zeros((0, 4)))
+                                                    for name in layers)])
+        svg, box = _axis(group[0], clear)
+        out.append(svg)
+        boxes.append(box)
     if not boxes:
         return "", None
     b = np.array(boxes)

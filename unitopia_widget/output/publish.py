@@ -9,13 +9,14 @@ from __future__ import annotations
 import numpy as np
 
 from ..design.page import CAPTION_CHARS, TITLE_CHARS, check_text, legend_spec
+from ..design.positions import POSITION_CHANNELS
 from . import legend as legend_mod, legend_draw
 from .composite import chart_png
 from .export import to_svg
 from .axes import axes_svg
 from .outline import outlines
 from .pile_labels import labels_svg
-from ..io.svgsafe import sanitize_svg
+from ..io.svgsafe import SVG_NS, sanitize_svg
 from .page import compose
 
 
@@ -53,6 +54,27 @@ def legend_image(chart) -> tuple[str, float, float] | None:
         return None
     svg, w, h = legend_draw.standalone(sections(chart, chart.units))
     return sanitize_svg(svg), w, h
+
+
+AXES_PAD = 4.0   # px around the axes' box in their image: room for the text's estimated width
+
+
+def axes_image(chart) -> tuple[str, tuple] | None:
+    """``(svg, (x0, y0, x1, y1))``: the axes of the last layout (as ``axes=True`` draws
+    them) alone as a sanitised SVG document whose view box is the box ``x0..x1, y0..y1``
+    (canvas px, ``AXES_PAD`` around what they take; it may reach past the canvas). None
+    when no layer binds ``x=``/``y=`` or before a layout that placed marks along one. The
+    widget's ``axes_image`` trait carries it."""
+    bound = any(layer.encodings.get(c) is not None
+                for layer in chart.layers for c in POSITION_CHANNELS)
+    if not bound or chart.laid is None or not chart.laid.axes:
+        return None
+    drawn, box = axes_svg(chart.laid.axes, mark_boxes(chart.laid.placements))
+    x0, y0 = box[0] - AXES_PAD, box[1] - AXES_PAD
+    w, h = box[2] - box[0] + 2 * AXES_PAD, box[3] - box[1] + 2 * AXES_PAD
+    svg = (f'<svg xmlns="{SVG_NS}" width="{w:.1f}" height="{h:.1f}" '
+           f'viewBox="{x0:.1f} {y0:.1f} {w:.1f} {h:.1f}">{drawn}</svg>')
+    return sanitize_svg(svg), tuple(round(float(v), 1) for v in (x0, y0, x0 + w, y0 + h))
 
 
 def export_svg(chart, units, legend=None, title=None, caption=None, outline=False,

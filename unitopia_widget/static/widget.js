@@ -314,21 +314,27 @@ function createStage(signal) {
     canvases: { scene, marks, over },
     size: [0, 0],
     // set by the first layout()
+    margin: [0, 0, 0, 0],
+    // canvas px left, top, right, bottom: room outside the canvas
     scale: 1,
     dpr: 1,
     onResize: () => {
     }
   };
+  let shownMargin = "";
   stage.layout = (size) => {
     const [W, H] = size;
-    const avail = wrap.clientWidth || W;
-    const tall = Math.max(240, 0.85 * (window.innerHeight || H));
-    const scale = Math.min(avail / W, tall / H);
+    const [l, t, r, b] = stage.margin;
+    const avail = wrap.clientWidth || W + l + r;
+    const tall = Math.max(240, 0.85 * (window.innerHeight || H + t + b));
+    const scale = Math.min(avail / (W + l + r), tall / (H + t + b));
     const dpr = window.devicePixelRatio || 1;
-    if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1]) return false;
+    const margin = `${t * scale}px ${r * scale}px ${b * scale}px ${l * scale}px`;
+    if (scale === stage.scale && dpr === stage.dpr && W === stage.size[0] && H === stage.size[1] && margin === shownMargin) return false;
     Object.assign(stage, { size: [W, H], scale, dpr });
     el.style.width = `${W * scale}px`;
     el.style.height = `${H * scale}px`;
+    el.style.margin = shownMargin = margin;
     for (const c of [scene, marks, over]) {
       c.width = Math.max(1, Math.round(W * scale * dpr));
       c.height = Math.max(1, Math.round(H * scale * dpr));
@@ -2556,6 +2562,40 @@ function createPileLabels(stage) {
   return { el: svg, update };
 }
 
+// src/axes-view.js
+function createAxes(model, stage) {
+  const img = h("img", { class: "ut-axes", dataset: { role: "axes" }, alt: "axes", draggable: false });
+  const paper = h("div", { class: "ut-axes-paper" });
+  const trait = () => {
+    const a = model.get("axes_image");
+    const box = a ? [a.x, a.y, a.width, a.height].map(Number) : [];
+    const ok = a && typeof a.src === "string" && a.src.startsWith("data:image/") && box.every(Number.isFinite) && box[2] > 0 && box[3] > 0;
+    return ok ? { src: a.src, box } : null;
+  };
+  function update([W, H]) {
+    const a = trait();
+    const m = a ? [-a.box[0], -a.box[1], a.box[0] + a.box[2] - W, a.box[1] + a.box[3] - H].map((v) => Math.max(0, Math.ceil(v))) : [0, 0, 0, 0];
+    if (!a) {
+      img.remove();
+      paper.remove();
+    } else if (img.parentNode !== stage.el) {
+      stage.el.prepend(paper);
+      stage.bg.after(img);
+    }
+    if (a && img.getAttribute("src") !== a.src) img.src = a.src;
+    stage.margin = m;
+  }
+  function place() {
+    const a = trait();
+    if (!a) return;
+    const k = stage.scale;
+    const [l, t, r, b] = stage.margin;
+    Object.assign(img.style, { left: `${a.box[0] * k}px`, top: `${a.box[1] * k}px`, width: `${a.box[2] * k}px`, height: `${a.box[3] * k}px` });
+    Object.assign(paper.style, { left: `${-l * k}px`, top: `${-t * k}px`, width: `${(stage.size[0] + l + r) * k}px`, height: `${(stage.size[1] + t + b) * k}px` });
+  }
+  return { img, update, place };
+}
+
 // src/export.js
 function exportBlob(format, data) {
   if (format === "svg") return new Blob([String(data)], { type: "image/svg+xml" });
@@ -2945,6 +2985,8 @@ function renderView({ model, el, signal }) {
   const tools = makeTools(view);
   const legend = createLegend(view, signal);
   const pileLabels = createPileLabels(stage);
+  const axes = createAxes(model, stage);
+  const drawAxes = () => (axes.update(readDesign(model).canvas || [1, 1]), axes.place(), redraw("scene"));
   const drawLabels = () => pileLabels.update(list(model, "pile_labels"), readDesign(model).canvas || [1, 1]);
   const pageText = createPageText(stage.wrap);
   const side = h("div", { class: "ut-side" }, panels.map((p) => p.el));
@@ -2975,6 +3017,7 @@ function renderView({ model, el, signal }) {
       ["scene", "over", "marks"].forEach((w) => dirty.add(w));
       painter.cancel();
       legend.place();
+      axes.place();
     }
     if (interp.step(now)) dirty.add("marks");
     if (replay.step(now)) dirty.add("marks");
@@ -3010,6 +3053,7 @@ function renderView({ model, el, signal }) {
     images.prune(new Set(design.layers.map((l) => l.container && l.container.image).filter(Boolean)));
     pageText.update(design);
     drawLabels();
+    drawAxes();
     updatePanels();
     legend.place();
     redraw("scene", "over");
@@ -3062,6 +3106,7 @@ function renderView({ model, el, signal }) {
   onModel(model, ["change:stale"], onStatus, signal);
   onModel(model, ["change:legend_image"], () => legend.place(), signal);
   onModel(model, ["change:pile_labels"], drawLabels, signal);
+  onModel(model, ["change:axes_image"], drawAxes, signal);
   onModel(model, ["change:fields"], () => panels[2].update(), signal);
   onModel(model, ["change:marks"], () => {
     bitmaps.update(list(model, "marks"));

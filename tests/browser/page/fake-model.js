@@ -131,6 +131,7 @@ export function defaultState() {
     status: "idle",
     stale: false,
     legend_image: {},
+    axes_image: {},
     progress: {},
     error: "",
     selected_units: [],
