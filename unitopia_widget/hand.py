@@ -168,6 +168,23 @@ class HandControl:
         return (self.laid is not None and not self.laid.result.cancelled and origin is self._origin
                 and self._same_inputs(inputs))
 
+    def _reusable(self, origin, inputs):
+        """The last run's ``Layout.problem`` when this run starts warm from its layout and
+        only the pins or the rows changed since (the design otherwise equal, the same
+        device): a reflow reuses it (``layout.reflow``); else None."""
+        ran = self._ran
+        if origin is None or origin is not self._snapshot or self.laid is None \
+                or ran is None or ran[2] != inputs[2]:
+            return None
+        return self.laid.problem if _unpinned(ran[0]) == _unpinned(inputs[0]) else None
+
     def _remember_run(self, origin, inputs, units, result) -> None:
         self._origin, self._ran = origin, (inputs[0], inputs[1].copy(), inputs[2])
         self._snapshot = snapshot(units, self.layers, result)
+
+
+def _unpinned(text: str) -> dict:
+    """The design JSON ``text`` without its pins."""
+    design = json.loads(text)
+    design.pop("pins", None)
+    return design
