@@ -51,8 +51,8 @@ class ReflowSettings:
     final_overlap: float = 0.001  # the most grown overlap and outside of all units, a share of all their ink
     reach: float = 0.5           # frozen units within this many footprint radii of an active one are drawn
     round_iterations: int = 4    # steps between two looks at the window
-    max_iterations: int = 160    # steps before the full warm run takes over
-    spread: float = 0.5          # share of the units active beyond which the full warm run takes over
+    max_iterations: int = 100    # steps before the full warm run takes over
+    spread: float = 0.2          # share of the units active beyond which the full warm run takes over
     gain: float = 4.0            # first step, in ``Steps.lr`` (mean radii per step), decaying to 1
     gain_decay: float = 0.97     # per step
     floor: float = 0.1           # the least step, in ``Steps.lr``
