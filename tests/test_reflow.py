@@ -1,6 +1,6 @@
-"""Live reflow (issue 49): a warm run after a small change moves only the marks the change
-reaches (``layout.reflow``), and one it cannot answer so runs the full warm layout. One
-300-mark closed layout, shared by the tests."""
+"""Live reflow (issue 49): a warm run after a small change (pins, rows, margins) moves only
+the marks the change reaches (``layout.reflow``), and one it cannot answer so runs the full
+warm layout. One 300-mark closed layout, shared by the tests."""
 import numpy as np
 import pandas as pd
 import pytest
@@ -74,7 +74,16 @@ def test_added_rows_reflow_around_them_and_removed_ones_run_the_full_layout(char
     assert "reflow" not in chart.result.phases, "a closed container fills the room again"
 
 
-def test_a_design_change_beyond_pins_and_rows_runs_the_full_layout(chart):
+def test_margins_reflow_and_another_container_runs_the_full_layout(chart, base):
     chart.layer(0).set(margin=0.1)
+    wider = chart.layout()
+    assert set(chart.result.phases) == {"reflow"} and overlap(wider) < 0.01
+    assert (wider.width < base.placements.width).all(), "the marks give their margins room"
+    chart.layer(0).set(margin=0.0)
+    narrow = chart.layout()
+    assert set(chart.result.phases) == {"reflow"}
+    assert narrow.width.to_numpy() == pytest.approx(base.placements.width.to_numpy(), rel=0.01), \
+        "the marks grow back into their margins' room"
+    chart.layer(0).set(container=uw.Container.ellipse(200, 150, 190, 140))
     chart.layout()
     assert "reflow" not in chart.result.phases

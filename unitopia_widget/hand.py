@@ -170,21 +170,26 @@ class HandControl:
 
     def _reusable(self, origin, inputs):
         """The last run's ``Layout.problem`` when this run starts warm from its layout and
-        only the pins or the rows changed since (the design otherwise equal, the same
-        device): a reflow reuses it (``layout.reflow``); else None."""
+        only the pins, the rows or the margins changed since (the design otherwise equal, the
+        same device, the same marks in the same order): a reflow reuses it (its raster, fields
+        and sprites depend on none of these; ``layout.reflow``); else None."""
         ran = self._ran
         if origin is None or origin is not self._snapshot or self.laid is None \
                 or ran is None or ran[2] != inputs[2]:
             return None
-        return self.laid.problem if _unpinned(ran[0]) == _unpinned(inputs[0]) else None
+        same_marks = list(self._units.sprites) == list(self.laid.units.sprites)   # its pyramids
+        same_design = _reflowable(ran[0]) == _reflowable(inputs[0])
+        return self.laid.problem if same_marks and same_design else None
 
     def _remember_run(self, origin, inputs, units, result) -> None:
         self._origin, self._ran = origin, (inputs[0], inputs[1].copy(), inputs[2])
         self._snapshot = snapshot(units, self.layers, result)
 
 
-def _unpinned(text: str) -> dict:
-    """The design JSON ``text`` without its pins."""
+def _reflowable(text: str) -> dict:
+    """The design JSON ``text`` without what a reflow answers: its pins and margins."""
     design = json.loads(text)
     design.pop("pins", None)
+    for layer in design.get("layers", []):
+        layer.get("encodings", {}).pop("margin", None)
     return design

@@ -8,13 +8,15 @@ layout as any warm run does (``prepare.warm``, ``prepare.pins``), with the scale
 (``warm`` shrinks it only where added rows need the room), and then moves only the marks
 the change reaches (``settle``): a unit is *crowded* when its overlapped or outside share
 of its ink grew by more than ``ReflowSettings.crowded`` over the last layout; crowded units
-are *active* (they move), the units within reach of an active one are drawn as frozen
-obstacles, and a frozen unit that becomes crowded joins the active ones, so the window
-grows while overlaps propagate. The run stops as soon as no unit is crowded. A change that
-reaches too far (``spread``), or one the window cannot absorb in ``max_iterations``, is
-answered by the full warm run instead (``reflow`` returns None); so are removed rows in a
-container whose scale grows into their room, moved forces, emitters, curve tracks and
-x=/y= positions, which no window answers.
+are *active* (they move), every unit with ink in the raster box around the active ones is
+drawn, the others frozen as obstacles, and a frozen unit that becomes crowded joins the
+active ones (in a jam, one pressed at all), so the window grows while overlaps propagate.
+The run stops as soon as the layout is legal again: the overlap the change added is at most
+``final_overlap`` of all the marks' area, and no unit's share grew by more than ``worst``. A
+change that reaches too far (``spread``), or one the window cannot absorb in
+``max_iterations``, is answered by the full warm run instead (``reflow`` returns None); so
+are removed rows in a container whose scale grows into their room, design changes beyond
+pins (a margin, a force), emitters, curve tracks and x=/y= positions, which no window answers.
 """
 from __future__ import annotations
 
@@ -35,7 +37,7 @@ from .rules import STEPS
 from .solver import Result
 from .step.losses import CanvasLoss, shares
 from .step.optim import Adam
-from .step.placement import Placement, frame
+from .step.placement import Placement
 from .step.raster import Planner, render_samples
 
 
@@ -49,13 +51,14 @@ class ReflowSettings:
     patience: int = 2            # rounds without the worst growth falling by ``progress``: a jam
     progress: float = 0.002
     final_overlap: float = 0.001  # the most grown overlap and outside of all units, a share of all their ink
-    reach: float = 0.5           # frozen units within this many footprint radii of an active one are drawn
     round_iterations: int = 4    # steps between two looks at the window
     max_iterations: int = 100    # steps before the full warm run takes over
     spread: float = 0.2          # share of the units active beyond which the full warm run takes over
     gain: float = 4.0            # first step, in ``Steps.lr`` (mean radii per step), decaying to 1
     gain_decay: float = 0.97     # per step
     floor: float = 0.1           # the least step, in ``Steps.lr``
+    room: float = 0.02           # share of a controlled scale group's footprint area its marks may
+    #                              give up (as a warm start's scale does) before the scale must grow
     slack: float = 2.0           # largest footprint radii the raster box reaches past the drawn units
 
 
@@ -103,16 +106,18 @@ def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_a
     where = {(layer, row): k for k, (layer, row) in enumerate(zip(previous["layer"], previous["row"]))}
     found = np.array([where.get((names[li], row), -1) for li, row in zip(units.layer, units.rows)])
     kept = found >= 0
-    if not kept.any() or (len(previous) > kept.sum() and p.free_scale):
-        return None   # removed rows: the scale grows into the room they leave, and all move
+    if not kept.any():
+        return None
     p = warm_problem(p, units, layers, canvas, previous, pinned, pin_xy)
-    p = pin_problem(p, units, layers, canvas, pinned, pin_xy, pin_angle, vacate=False)
     scale = unit_scales(p)
+    area = units.area * footprint(units.margin) ** 2 * scale ** 2
+    if shrunk(p, units, layers, previous, area, settings.room):
+        return None   # a controlled scale grows into the room the change left: all marks move
+    p = pin_problem(p, units, layers, canvas, pinned, pin_xy, pin_angle, vacate=False)
     center = p.placement.t.detach().cpu().numpy().astype(np.float64)
     step_aside(center, p.disc * scale, p.placement.movable.cpu().numpy(), pinned)
     old = np.full((len(found), 2), np.nan)
     old[kept] = previous[["x", "y"]].to_numpy(dtype=float)[found[kept]]
-    area = units.area * footprint(units.margin) ** 2 * scale ** 2
     grew = np.ones(len(found), bool)   # added units, and kept ones moved or grown
     grew[kept] = (np.hypot(*(center[kept] - old[kept]).T) > 1e-6) \
         | (area[kept] > previous["area"].to_numpy(dtype=float)[found[kept]] * (1 + 1e-6))
@@ -127,6 +132,23 @@ def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_a
                   iterations=iterations, seconds=time.perf_counter() - started,
                   cancelled=cancelled, stats=stats, unit_scale=scale,
                   phases={"reflow": iterations}, rules=("reflow",))
+
+
+def shrunk(p: Problem, units, layers, previous, area: np.ndarray, room: float) -> bool:
+    """Whether the marks of some controlled scale group of ``p`` take ``room`` less of their
+    area than in the snapshot ``previous`` or more (rows removed, margins or sizes made
+    smaller): its scale would grow into the room left. ``area (N,)``: each unit's footprint
+    area now, px^2."""
+    names = [layer.name for layer in layers]
+    group = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
+    free = np.array([p.free_scale] if p.group_free is None else p.group_free, dtype=bool)
+    known = previous["layer"].isin(names).to_numpy()
+    old_group = np.full(len(previous), -1)
+    old_group[known] = group[[names.index(n) for n in previous["layer"][known]]]
+    before = previous["area"].to_numpy(dtype=float)
+    unit_group = group[units.layer]
+    return any(area[unit_group == g].sum() < before[old_group == g].sum() * (1 - room)
+               for g in np.nonzero(free)[0])
 
 
 def step_aside(center: np.ndarray, radius: np.ndarray, movable: np.ndarray,
