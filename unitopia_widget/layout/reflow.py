@@ -28,7 +28,7 @@ import numpy as np
 import torch
 
 from ..design.encodings import footprint
-from .prepare.assemble import _reach
+from .prepare.assemble import room_reach
 from .prepare.pins import pin_problem
 from .prepare.problem import Problem
 from .prepare.start import footprint_radius
@@ -88,7 +88,7 @@ def rebase(base: Problem, units, layers) -> Problem | None:
                           np.array([layers[li].rotate for li in units.layer], bool), base.device)
     return dataclasses.replace(
         base, sprite=units.sprite, layer=units.layer, half_w=units.half_w, half_h=units.half_h,
-        margin=units.margin, placement=placement, terms=terms, reach=_reach(units),
+        margin=units.margin, placement=placement, terms=terms, reach=room_reach(units),
         disc=footprint_radius(units), ink_share=units.ink_share, stage=None, travelling=False)
 
 
