@@ -67,6 +67,45 @@ def test_a_second_run_with_no_change_gives_identical_placements(chart, base):
     pd.testing.assert_frame_equal(again, base.placements)
 
 
+def test_a_run_with_nothing_changed_returns_the_last_layout_and_shows_its_frame(chart, base):
+    shown = []
+    again = chart.layout(on_frame=shown.append)
+    assert chart.laid is base.laid and again is base.placements, "no new run"
+    assert len(shown) == 1 and np.array_equal(shown[0], base.frames[-1])
+    progress = []
+    chart.layout(on_progress=lambda *a: progress.append(a))
+    assert progress == [(base.result.iterations, base.result.stats["loss"], base.result.stats)]
+
+
+@pytest.mark.parametrize("change", ["value", "dtype", "margin", "seed", "device", "fresh"])
+def test_a_change_anywhere_runs_the_layout_again(chart, base, change):
+    fresh = False
+    if change == "value":   # one value of one row, edited in place (in a copy of the shared rows)
+        chart.set_data(chart.df.copy())
+        chart.df.loc[chart.df.index[7], "v"] += 0.5
+    elif change == "dtype":   # equal values, another dtype: a run of its own
+        chart.set_data(chart.df.astype({"v": "float32"}))
+    elif change == "margin":
+        chart.layer("b").set(margin=0.2)
+    elif change == "seed":
+        chart.seed = 1
+    elif change == "device":
+        chart._ran = (*chart._ran[:2], "cuda")   # as if the last run was on another device
+    else:   # the last run as if warm: a fresh one starts elsewhere
+        chart._origin, fresh = chart._snapshot, True
+    chart.layout(fresh=fresh)
+    assert chart.laid is not base.laid
+
+
+def test_a_stopped_run_is_not_returned_again(chart):
+    chart.seed = 2
+    chart.layout(cancel=lambda: True)
+    stopped = chart.laid
+    assert stopped.result.cancelled
+    chart.layout()
+    assert chart.laid is not stopped and not chart.result.cancelled
+
+
 def test_pinned_rows_stay_on_their_pins_and_every_layer_keeps_off_them(chart):
     # rows of layer "a" pinned where layer "b" marks are now ("b" does not block on "a")
     b = chart.placements[chart.placements.layer == "b"]

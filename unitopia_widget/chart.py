@@ -257,9 +257,10 @@ class Chart(Piling, HandControl):
         """Solve the layout now; returns the placements table and keeps it, and the
         run's frames in ``frames`` (``(F, N, 4)``, see ``layout.frames``). ``abort()``
         True during the setup raises ``Cancelled`` and keeps the previous layout.
-        A run after a change starts from the last layout (``fresh=True``: from scratch).
-        ``warn_bindings=False``: the caller has just bound the design and warned (each
-        warning once per call)."""
+        A run after a change starts from the last layout (``fresh=True``: from scratch); a
+        run with nothing changed returns the last layout at once, showing its last frame
+        (``hand.HandControl._unchanged``). ``warn_bindings=False``: the caller has just bound
+        the design and warned (each warning once per call)."""
         self.bind_check(warn_bindings)
         self._check_pins()
         for names, total in overfilled(self.layers, self.scales):
@@ -271,10 +272,18 @@ class Chart(Piling, HandControl):
                           f"{MAX_COVER:g} (layer(name).set(fill=...)) or use "
                           f"scales='shared'", stacklevel=2)
         origin, inputs = self._start_from(fresh)
+        if self._unchanged(origin, inputs):   # the last run's layout, its progress and frame
+            result = self.laid.result
+            if on_progress is not None:
+                on_progress(result.iterations, result.stats["loss"], result.stats)
+            if on_frame is not None:
+                on_frame(self.laid.frames[-1].copy())
+            return self.laid.placements
         laid = engine.layout(
             self._units, self.layers, self.canvas, seed=self.seed, device=self.device,
             on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
-            scales=self.scales, abort=abort, pins=list(self._pins.values()), previous=origin)
+            scales=self.scales, abort=abort, pins=list(self._pins.values()), previous=origin,
+            reuse=self._reusable(origin, inputs))
         self.laid = laid
         self._remember_run(origin, inputs, laid.units, laid.result)
         if not laid.result.cancelled:

@@ -2,7 +2,9 @@
 
 ``Chart`` takes these methods (and the widget forwards them). A run after a change
 starts from the last layout (``layout.prepare.warm``); a run with nothing changed since the last
-one starts from where that one started, so it gives the same placements.
+one would start from where that one started and give the same placements, so it returns the
+last layout at once (``_unchanged``): nothing it depends on (the design with its pins, seed,
+canvas and scales, the rows, the device, the start) differs.
 """
 from __future__ import annotations
 
@@ -19,12 +21,12 @@ from .layout.prepare.warm import snapshot
 
 class HandControl:
     """Pins and data replacement; mixed into ``Chart`` (which provides ``df``, ``layers``,
-    ``canvas``, ``_units``, ``bind_check`` and ``_changed``)."""
+    ``canvas``, ``device``, ``laid``, ``_units``, ``bind_check`` and ``_changed``)."""
 
     _pins: dict = {}
     _snapshot = None   # the last run's layout (warm.snapshot), or None
     _origin = None     # the snapshot the last run started from (None: fresh)
-    _ran = None        # (design JSON text, DataFrame) of the last run
+    _ran = None        # (design JSON text, DataFrame, device) of the last run
 
     # --- pins -----------------------------------------------------------------
     def pin(self, rows, x=None, y=None, angle=None) -> None:
@@ -147,12 +149,47 @@ class HandControl:
     # --- warm starts -------------------------------------------------------------
     def _start_from(self, fresh: bool):
         """``(snapshot to start from or None, this run's inputs)``."""
-        inputs = (json.dumps(self.design(), sort_keys=True, default=str), self.df)
+        inputs = (json.dumps(self.design(), sort_keys=True, default=str), self.df, self.device)
         if fresh or self._snapshot is None:
             return None, inputs
-        same = self._ran is not None and self._ran[0] == inputs[0] and self._ran[1].equals(self.df)
-        return (self._origin if same else self._snapshot), inputs
+        return (self._origin if self._same_inputs(inputs) else self._snapshot), inputs
+
+    def _same_inputs(self, inputs) -> bool:
+        """Whether ``inputs`` (``_start_from``'s) are the last run's: the same design text,
+        equal rows (values, dtypes, index and columns) and the same device."""
+        ran = self._ran
+        return (ran is not None and ran[0] == inputs[0] and ran[2] == inputs[2]
+                and ran[1].equals(inputs[1]))
+
+    def _unchanged(self, origin, inputs) -> bool:
+        """Whether a run from ``origin`` with ``inputs`` (``_start_from``'s) would repeat the
+        last one exactly: that run completed (not cancelled), started from ``origin`` itself
+        and had the same inputs; its layout is then this run's."""
+        return (self.laid is not None and not self.laid.result.cancelled and origin is self._origin
+                and self._same_inputs(inputs))
+
+    def _reusable(self, origin, inputs):
+        """The last run's ``Layout.problem`` when this run starts warm from its layout and
+        only the pins, the rows or the margins changed since (the design otherwise equal, the
+        same device, the same marks in the same order): a reflow reuses it (its raster, fields
+        and sprites depend on none of these; ``layout.reflow``); else None."""
+        ran = self._ran
+        if origin is None or origin is not self._snapshot or self.laid is None \
+                or ran is None or ran[2] != inputs[2]:
+            return None
+        same_marks = list(self._units.sprites) == list(self.laid.units.sprites)   # its pyramids
+        same_design = _reflowable(ran[0]) == _reflowable(inputs[0])
+        return self.laid.problem if same_marks and same_design else None
 
     def _remember_run(self, origin, inputs, units, result) -> None:
-        self._origin, self._ran = origin, (inputs[0], inputs[1].copy())
+        self._origin, self._ran = origin, (inputs[0], inputs[1].copy(), inputs[2])
         self._snapshot = snapshot(units, self.layers, result)
+
+
+def _reflowable(text: str) -> dict:
+    """The design JSON ``text`` without what a reflow answers: its pins and margins."""
+    design = json.loads(text)
+    design.pop("pins", None)
+    for layer in design.get("layers", []):
+        layer.get("encodings", {}).pop("margin", None)
+    return design

@@ -18,6 +18,7 @@ from .prepare.pins import pin_problem, pinned_units
 from .prepare.problem import Cancelled
 from .prepare.scale import initial_scale
 from .prepare.warm import warm_problem
+from .reflow import reflow
 from .solver import Result, solve
 from .step.heap import held
 
@@ -32,6 +33,8 @@ class Layout:
     frames: np.ndarray | None      # (F, N, 4) the run's frames, ending on its layout (``frames``)
     result: Result                 # the solver's account: iterations, quality, phases, rules
     axes: list = field(default_factory=list)   # positions.Axis of each bound x=/y= channel
+    #: the run's ``Problem`` as built, before its warm start and pins: what a reflow reuses
+    problem: object = field(default=None, repr=False)
 
 
 def boxes(laid: Layout | None, units: Units, layers, canvas) -> np.ndarray:
@@ -80,7 +83,7 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
 
 def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
            on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None,
-           pins=(), previous=None) -> Layout:
+           pins=(), previous=None, reuse=None) -> Layout:
     """Build and solve the layout of ``units`` (``prepare.bind.bind(df, layers)``). Returns
     its ``Layout``.
 
@@ -89,7 +92,10 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
     raises ``Cancelled``: there is no layout to keep; but once ``on_frame`` has shown the
     start (a fresh, unpinned run shows it before the fields are made), a Stop keeps the
     start as the layout. ``pins``: ``design.pins.Pin``s held in place (``layout.pins``);
-    ``previous``: a ``warm.snapshot`` to start from (None: a fresh start)."""
+    ``previous``: a ``warm.snapshot`` to start from (None: a fresh start); ``reuse``: the
+    last run's ``Layout.problem`` where only pins and rows changed since (its layers, canvas,
+    seed, scales and device are these): a warm run then moves only the marks the change
+    reaches, where it can (``reflow``)."""
     check_abort(abort)
     kept = Frames()
 
@@ -99,11 +105,21 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
             on_frame(frame, *final)
 
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
+    if previous is not None and reuse is not None:
+        with held():
+            result = reflow(reuse, units, layers, canvas, previous, pinned, pin_xy, pin_angle,
+                            on_frame=record, cancel=cancel)
+        if result is not None:
+            frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
+            return Layout(placements=placements(units, layers, result), units=units,
+                          scale=result.scale, canvas=tuple(canvas), frames=frames, result=result,
+                          problem=reuse)
+        kept = Frames()   # the full warm run's frames only
     # a fresh, unpinned start is the solver's start: it is shown before the fields are made
     early = record if previous is None and len(pinned) == 0 else None
     with held():   # the iterations' scratch tensors reuse the heap, not fresh pages
-        problem = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
-                                abort=abort, on_start=early)
+        problem = base = build_problem(units, layers, canvas, seed, pick_device(device),
+                                       scales=scales, abort=abort, on_start=early)
         if previous is not None:
             problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
         problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
@@ -113,4 +129,5 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
         raise Cancelled("the layout was stopped before its first step")
     frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))
     return Layout(placements=placements(units, layers, result), units=units, scale=result.scale,
-                  canvas=tuple(canvas), frames=frames, result=result, axes=result.axes)
+                  canvas=tuple(canvas), frames=frames, result=result, axes=result.axes,
+                  problem=base)

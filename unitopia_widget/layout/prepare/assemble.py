@@ -144,7 +144,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
-                   reach=_reach(units), disc=disc, ink_share=units.ink_share,
+                   reach=room_reach(units), disc=disc, ink_share=units.ink_share,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
                    regions=tuple(layer.region for layer in layers))
@@ -169,7 +169,7 @@ def _pyramid(mark, device: str) -> list:
     return sprite_pyramid(alpha, device, keep_thin=is_thin(ink) or hollow)
 
 
-def _reach(units: Units) -> np.ndarray:
+def room_reach(units: Units) -> np.ndarray:
     """``(N,)`` at scale 1: the ink's area-equivalent radius less the margin band the room
     is seen through (the room the controller looks for is measured from the footprints, a
     checker measures it from the ink). Bands grow with their marks, and a mark borders room

@@ -1,6 +1,7 @@
 """Hexagonal lattices inside a region: the starting positions emitters hand out."""
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -15,13 +16,26 @@ class Region:
 
     def __init__(self, coverage: np.ndarray, rho: float):
         self.rho = rho
-        inside = coverage >= 0.5
-        if not inside.any():
+        self.inside = coverage >= 0.5
+        if not self.inside.any():
             raise ValueError("container: the region has no inside pixels on the canvas")
-        self.depth = ndimage.distance_transform_edt(inside) / rho   # canvas px to the outside
-        ys, xs = np.nonzero(inside)
+        ys, xs = np.nonzero(self.inside)
         self.bbox = (xs.min() / rho, ys.min() / rho, (xs.max() + 1) / rho, (ys.max() + 1) / rho)
         self.area = float(coverage.sum()) / rho ** 2
+
+    @functools.cached_property
+    def depth(self) -> np.ndarray:
+        """``(H, W)`` canvas px from each raster pixel to the outside (0 outside); made when
+        first read."""
+        return ndimage.distance_transform_edt(self.inside) / self.rho
+
+    def contains(self, points: np.ndarray) -> np.ndarray:
+        """``(k,)`` bool: whether each point ``(k, 2)`` is inside (``depth_at(points) > 0``,
+        with no distances made)."""
+        h, w = self.inside.shape
+        j = np.clip((points[:, 0] * self.rho).astype(int), 0, w - 1)
+        i = np.clip((points[:, 1] * self.rho).astype(int), 0, h - 1)
+        return self.inside[i, j]
 
     def axis(self) -> float:
         """Angle (radians, from +x towards +y) of the inside's long principal axis."""
@@ -35,6 +49,24 @@ class Region:
         j = np.clip((points[:, 0] * self.rho).astype(int), 0, w - 1)
         i = np.clip((points[:, 1] * self.rho).astype(int), 0, h - 1)
         return self.depth[i, j]
+
+
+_REGIONS: dict = {}   # (container JSON text, canvas, rho) -> Region, the last few made
+REGIONS_KEPT = 8
+
+
+def container_region(container, canvas, rho: float) -> Region:
+    """The ``Region`` of ``container`` on ``canvas`` at ``rho``, made once per (container
+    JSON, canvas, rho) among the last ``REGIONS_KEPT`` asked for (a warm run asks again for
+    the regions of the last; regions are only read)."""
+    key = (repr(container.to_json()), tuple(canvas), float(rho))
+    region = _REGIONS.pop(key, None)
+    if region is None:
+        region = Region(container.coverage(canvas, rho), rho)
+    _REGIONS[key] = region
+    while len(_REGIONS) > REGIONS_KEPT:
+        del _REGIONS[next(iter(_REGIONS))]
+    return region
 
 
 def hex_points(bbox, spacing: float, phase: float = 0.0) -> np.ndarray:

@@ -15,7 +15,7 @@ import numpy as np
 import torch
 
 from ...design.emitters import CurveEmitter
-from .lattice import Region
+from .lattice import container_region
 from .start import footprint_radius
 from .warm import free_room, replace_start
 
@@ -44,12 +44,13 @@ def pinned_units(units, layers, pins) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 
 def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
-                angle: np.ndarray):
+                angle: np.ndarray, vacate: bool = True):
     """``problem`` with units ``idx (P,)`` held at ``xy (P, 2)``, ``angle (P,)`` radians, and
     drawn into one obstacle slab per (container, scale group) that every layer in the
     container blocks on. A free unit that starts with its centre on a pinned mark (or a
     pinned centre on it), where the overlap would push it nowhere, starts in the nearest
-    free room instead (``warm.free_room``)."""
+    free room instead (``warm.free_room``), unless ``vacate`` is False (a reflow moves it
+    aside itself)."""
     if len(idx) == 0:
         return problem
     p, terms = problem, problem.terms
@@ -88,7 +89,8 @@ def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
     turnable = p.placement.turnable.copy()
     drift = np.zeros_like(center) if p.placement.drift is None else p.placement.drift.cpu().numpy()
     center[idx], theta[idx], movable[idx], turnable[idx], drift[idx] = xy, angle, False, False, 0.0
-    _vacate(p, units, layers, canvas, keys, center, idx)
+    if vacate:
+        _vacate(p, units, layers, canvas, keys, center, idx)
     stage = None if p.stage is None else np.where(np.isin(np.arange(len(layer)), idx), 0, p.stage)
     return dataclasses.replace(
         p, layer=layer, terms=new_terms, forces=list(p.forces) + [[] for _ in slabs],
@@ -112,5 +114,5 @@ def _vacate(p, units, layers, canvas, keys, center: np.ndarray, idx: np.ndarray)
         d = np.hypot(*(center[:, None, :] - center[None, pins, :]).transpose(2, 0, 1))
         on_pin = mine & free & (d < np.maximum(radius[:, None], radius[None, pins])).any(1)
         if on_pin.any():
-            region = Region(layers[keys.index(key)].region.coverage(canvas, p.grid.rho), p.grid.rho)
+            region = container_region(layers[keys.index(key)].region, canvas, p.grid.rho)
             center[on_pin] = free_room(region, center, radius, mine & ~on_pin, on_pin)

@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from ...design.encodings import footprint
-from .lattice import Region
+from .lattice import Region, container_region
 from .pack import STEP, Packing
 from ..step.placement import Placement
 from .start import footprint_radius
@@ -103,19 +103,20 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
     radius = footprint_radius(units) * scale
     rho = p.grid.rho
     regions = {}
-    for i, layer in enumerate(layers):
-        key = repr(layer.region.to_json())
+    keys = [repr(layer.region.to_json()) for layer in layers]
+    for i, (layer, key) in enumerate(zip(layers, keys)):
         if key not in regions:
-            regions[key] = Region(layer.region.coverage(canvas, rho), rho)
+            regions[key] = container_region(layer.region, canvas, rho)
         mine = units.layer == i
-        outside = mine & kept & (regions[key].depth_at(center) <= 0)
+        outside = mine & kept & ~regions[key].contains(center)
         kept[outside] = False
     is_pinned = np.isin(np.arange(len(center)), pinned)
     center[pinned] = pin_xy
+    unit_key = np.array(keys, dtype=object)[units.layer]
     for key, region in regions.items():
-        inside = np.array([repr(layers[li].region.to_json()) == key for li in units.layer])
+        inside = unit_key == key
         added = inside & ~kept & ~is_pinned & ~still & np.array([layers[li].emitter is None
-                                                                   for li in units.layer])
+                                                                 for li in units.layer])
         if added.any():
             taken = inside & (kept | is_pinned)
             center[added] = free_room(region, center, radius, taken, added)

@@ -1,0 +1,89 @@
+"""Live reflow (issue 49): a warm run after a small change (pins, rows, margins) moves only
+the marks the change reaches (``layout.reflow``), and one it cannot answer so runs the full
+warm layout. One 300-mark closed layout, shared by the tests."""
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.chart import Chart
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+ELLIPSE = uw.Container.ellipse(200, 150, 185, 135)
+
+
+def data(n: int, start: int = 0) -> pd.DataFrame:
+    rng = np.random.default_rng(start + 3)
+    return pd.DataFrame({"v": rng.uniform(1, 3, n)}, index=range(start, start + n))
+
+
+@pytest.fixture(scope="module")
+def base():
+    chart = Chart(data(300), size="v", container=ELLIPSE, canvas=(400, 300))
+    chart.layout()
+    return chart
+
+
+@pytest.fixture
+def chart(base):
+    """A copy of the laid-out base chart for one test to change (its last run included)."""
+    other = Chart.from_design(base.df, base.design())
+    for name in ("laid", "_units", "_snapshot", "_origin", "_ran"):
+        setattr(other, name, getattr(base, name))
+    return other
+
+
+def overlap(table) -> float:
+    """The discs' overlapped area, a share of their area (exact geometry)."""
+    xy, r = table[["x", "y"]].to_numpy(), table["width"].to_numpy() / 2
+    d = np.hypot(*(xy[:, None] - xy[None]).transpose(2, 0, 1))
+    depth = np.triu(np.maximum(r[:, None] + r[None] - d, 0), 1)
+    lens = depth * np.minimum(r[:, None], r[None])   # a lens's area, to first order
+    return float(lens.sum() / (np.pi * r ** 2).sum())
+
+
+@pytest.mark.parametrize("k", [20, 150])
+def test_a_moved_pin_moves_only_the_marks_around_it(chart, base, k):
+    before = base.placements
+    r = float(np.median(before.width) / 2)
+    row = before.iloc[k]
+    frames = []
+    way = np.array([200 - row.x, 150 - row.y])   # towards the middle: the pin stays inside
+    to = np.array([row.x, row.y]) + 2.5 * r * way / np.hypot(*way)
+    chart.pin([row.row], x=to[0], y=to[1])
+    after = chart.layout(on_frame=frames.append)
+    assert set(chart.result.phases) == {"reflow"}, "the reflow answered"
+    assert chart.result.iterations <= 100 and len(frames) >= 1
+    moved = np.hypot(after.x - before.x, after.y - before.y).to_numpy()
+    far = np.hypot(before.x - to[0], before.y - to[1]).to_numpy() > 5 * r
+    assert np.median(moved[far]) < 0.1 * r and (moved > 0.1 * r).mean() < 0.2
+    held = after.set_index("row").loc[row.row]
+    assert np.hypot(held.x - to[0], held.y - to[1]) < 1e-3
+    assert overlap(after) < 0.01 and chart.result.stats["overlap"] < 0.005
+    assert after.width.to_numpy() == pytest.approx(before.width.to_numpy()), "the scale kept"
+
+
+def test_added_rows_reflow_around_them_and_removed_ones_run_the_full_layout(chart, base):
+    chart.set_data(pd.concat([base.df, data(3, start=300)]))
+    added = chart.layout()
+    assert len(added) == 303 and overlap(added) < 0.01
+    assert chart.result.stats["outside"] < 0.005
+    chart.set_data(base.df.iloc[10:])
+    chart.layout()
+    assert "reflow" not in chart.result.phases, "a closed container fills the room again"
+
+
+def test_margins_reflow_and_another_container_runs_the_full_layout(chart, base):
+    chart.layer(0).set(margin=0.1)
+    wider = chart.layout()
+    assert set(chart.result.phases) == {"reflow"} and overlap(wider) < 0.01
+    assert (wider.width < base.placements.width).all(), "the marks give their margins room"
+    chart.layer(0).set(margin=0.0)
+    narrow = chart.layout()
+    assert set(chart.result.phases) == {"reflow"}
+    assert narrow.width.to_numpy() == pytest.approx(base.placements.width.to_numpy(), rel=0.01), \
+        "the marks grow back into their margins' room"
+    chart.layer(0).set(container=uw.Container.ellipse(200, 150, 190, 140))
+    chart.layout()
+    assert "reflow" not in chart.result.phases

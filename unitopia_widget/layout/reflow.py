@@ -1,0 +1,376 @@
+"""Live reflow: a run after a small change answered where the change reaches.
+
+A warm run whose layers are those of the last run (the design equal but for its pins; the
+rows may differ) reuses that run's ``Problem`` (``Layout.problem``: the raster, the region
+fields, the sprite pyramids and the blocks, made from the layers, the canvas and the raster
+resolution only) and gives each unit its arrays anew (``rebase``). It starts from the last
+layout as any warm run does (``prepare.warm``, ``prepare.pins``), with the scale kept
+(``warm`` shrinks it only where added rows need the room), and then moves only the marks
+the change reaches (``settle``): a unit is *crowded* when its overlapped or outside share
+of its ink grew by more than ``ReflowSettings.crowded`` over the last layout; crowded units
+are *active* (they move), every unit with ink in the raster box around the active ones is
+drawn, the others frozen as obstacles, and a frozen unit that becomes crowded joins the
+active ones (in a jam, one pressed at all), so the window grows while overlaps propagate.
+The run stops as soon as the layout is legal again: the overlap the change added is at most
+``final_overlap`` of all the marks' area, and no unit's share grew by more than ``worst``. A
+change that reaches too far (``spread``), or one the window cannot absorb in
+``max_iterations``, is answered by the full warm run instead (``reflow`` returns None); so
+are removed rows in a container whose scale grows into their room, design changes beyond
+pins (a margin, a force), emitters, curve tracks and x=/y= positions, which no window answers.
+"""
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+
+from ..design.encodings import footprint
+from .prepare.assemble import room_reach
+from .prepare.pins import pin_problem
+from .prepare.problem import Problem
+from .prepare.start import footprint_radius
+from .prepare.warm import warm_problem
+from .rules import STEPS
+from .solver import Result
+from .step.losses import CanvasLoss, shares
+from .step.optim import Adam
+from .step.placement import Placement
+from .step.raster import Planner, render_samples
+
+
+@dataclass(frozen=True)
+class ReflowSettings:
+    """The window's tuning numbers."""
+
+    crowded: float = 0.01        # growth of a unit's overlapped + outside share of its ink that activates it
+    worst: float = 0.05          # the most growth of one unit's share a legal layout keeps
+    touch: float = 0.002         # growth of a frozen unit's share that activates it in a jam
+    patience: int = 2            # rounds without the worst growth falling by ``progress``: a jam
+    progress: float = 0.002
+    final_overlap: float = 0.001  # the most grown overlap and outside of all units, a share of all their ink
+    round_iterations: int = 4    # steps between two looks at the window
+    max_iterations: int = 100    # steps before the full warm run takes over
+    spread: float = 0.2          # share of the units active beyond which the full warm run takes over
+    gain: float = 4.0            # first step, in ``Steps.lr`` (mean radii per step), decaying to 1
+    gain_decay: float = 0.97     # per step
+    floor: float = 0.1           # the least step, in ``Steps.lr``
+    room: float = 0.02           # share of a controlled scale group's footprint area its marks may
+    #                              give up (as a warm start's scale does) before the scale must grow
+    slack: float = 2.0           # largest footprint radii the raster box reaches past the drawn units
+
+
+SETTINGS = ReflowSettings()
+
+
+def rebase(base: Problem, units, layers) -> Problem | None:
+    """``base`` (the last run's problem, before its warm start and pins) for ``units``: its
+    raster, fields, pyramids, blocks and scales, with the per-unit arrays of ``units``;
+    None where those parts do not carry over (other marks, poured stages, curve tracks,
+    x=/y= anchors, units that cannot move, or emitters)."""
+    place = base.placement
+    if (base.anchor is not None or place.tracks or not bool(place.movable.all())
+            or (base.stage is not None and base.stage.max() > 0) or place.orientation is not None
+            or any(layer.emitter is not None for layer in layers)
+            or len(base.sprite_sides) != len(units.sprites)):
+        return None
+    group = np.zeros(len(layers), int) if base.scale_group is None else np.asarray(base.scale_group)
+    scales = np.array([base.scale] if base.group_scale is None else base.group_scale, dtype=float)
+    unit_scale = scales[group[units.layer]]
+    band = footprint(units.margin)
+    terms = dataclasses.replace(
+        base.terms, norm=float((units.area * band ** 2 * unit_scale ** 2).sum()) * base.grid.rho ** 2,
+        sums=None, _cover=None, _tables=None, _onehot=None, _obstacle=None)
+    n = len(units.rows)
+    placement = Placement(np.zeros((n, 2)), np.zeros(n), np.ones(n, bool),
+                          np.array([layers[li].rotate for li in units.layer], bool), base.device)
+    return dataclasses.replace(
+        base, sprite=units.sprite, layer=units.layer, half_w=units.half_w, half_h=units.half_h,
+        margin=units.margin, placement=placement, terms=terms, reach=room_reach(units),
+        disc=footprint_radius(units), ink_share=units.ink_share, stage=None, travelling=False)
+
+
+def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_angle,
+           on_frame=None, cancel=None, settings: ReflowSettings = SETTINGS) -> Result | None:
+    """The layout of ``units`` after a small change, answered from ``base`` (see the module
+    docstring) and the snapshot ``previous`` (``warm.snapshot``); ``pinned``, ``pin_xy``,
+    ``pin_angle`` as ``prepare.pins.pinned_units`` gives them. Returns the solver's
+    ``Result``, or None where the full warm run must answer."""
+    started = time.perf_counter()
+    p = rebase(base, units, layers)
+    if p is None:
+        return None
+    names = [layer.name for layer in layers]
+    where = {(layer, row): k for k, (layer, row) in enumerate(zip(previous["layer"], previous["row"]))}
+    found = np.array([where.get((names[li], row), -1) for li, row in zip(units.layer, units.rows)])
+    kept = found >= 0
+    if not kept.any():
+        return None
+    p = warm_problem(p, units, layers, canvas, previous, pinned, pin_xy)
+    scale = unit_scales(p)
+    area = units.area * footprint(units.margin) ** 2 * scale ** 2
+    if shrunk(p, units, layers, previous, area, settings.room):
+        return None   # a controlled scale grows into the room the change left: all marks move
+    p = pin_problem(p, units, layers, canvas, pinned, pin_xy, pin_angle, vacate=False)
+    center = p.placement.t.detach().cpu().numpy().astype(np.float64)
+    step_aside(center, p.disc * scale, p.placement.movable.cpu().numpy(), pinned)
+    old = np.full((len(found), 2), np.nan)
+    old[kept] = previous[["x", "y"]].to_numpy(dtype=float)[found[kept]]
+    grew = np.ones(len(found), bool)   # added units, and kept ones moved or grown
+    grew[kept] = (np.hypot(*(center[kept] - old[kept]).T) > 1e-6) \
+        | (area[kept] > previous["area"].to_numpy(dtype=float)[found[kept]] * (1 + 1e-6))
+    moved = settle(p, center, old, grew, settings, on_frame, cancel)
+    if moved is None:
+        return None
+    center, iterations, cancelled, stats = moved
+    angle = np.degrees(p.placement.theta.detach().cpu().numpy().astype(np.float64))
+    if on_frame is not None:   # the layout, the last frame as of every run
+        on_frame(np.column_stack([center, angle, scale]).astype(np.float32))
+    return Result(center=center, angle=angle, scale=float(unit_scale_of_group(p, 0)),
+                  iterations=iterations, seconds=time.perf_counter() - started,
+                  cancelled=cancelled, stats=stats, unit_scale=scale,
+                  phases={"reflow": iterations}, rules=("reflow",))
+
+
+def shrunk(p: Problem, units, layers, previous, area: np.ndarray, room: float) -> bool:
+    """Whether the marks of some controlled scale group of ``p`` take ``room`` less of their
+    area than in the snapshot ``previous`` or more (rows removed, margins or sizes made
+    smaller): its scale would grow into the room left. ``area (N,)``: each unit's footprint
+    area now, px^2."""
+    names = [layer.name for layer in layers]
+    group = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
+    free = np.array([p.free_scale] if p.group_free is None else p.group_free, dtype=bool)
+    known = previous["layer"].isin(names).to_numpy()
+    old_group = np.full(len(previous), -1)
+    old_group[known] = group[[names.index(n) for n in previous["layer"][known]]]
+    before = previous["area"].to_numpy(dtype=float)
+    unit_group = group[units.layer]
+    return any(area[unit_group == g].sum() < before[old_group == g].sum() * (1 - room)
+               for g in np.nonzero(free)[0])
+
+
+def step_aside(center: np.ndarray, radius: np.ndarray, movable: np.ndarray,
+               pinned: np.ndarray) -> None:
+    """Move (in ``center (N, 2)``) each free unit whose centre is on a pinned one (closer
+    than the larger of their discs ``radius (N,)``), where the overlap pushes it nowhere
+    sure, straight away from the pin until their discs touch."""
+    for k in pinned:
+        gap = center - center[k]
+        d = np.hypot(*gap.T)
+        on = movable & (d < np.maximum(radius, radius[k]))
+        if on.any():
+            away = np.where(d[on, None] > 1e-9, gap[on] / np.maximum(d[on, None], 1e-9), [1.0, 0.0])
+            center[on] = center[k] + away * (radius[on, None] + radius[k])
+
+
+def unit_scales(p: Problem) -> np.ndarray:
+    """``(N,)`` each unit's global scale in ``p``."""
+    group = np.zeros(p.terms.penalty.shape[0], int) if p.scale_group is None else np.asarray(p.scale_group)
+    return np.array([unit_scale_of_group(p, g) for g in group[p.layer]], dtype=np.float64)
+
+
+def unit_scale_of_group(p: Problem, g: int) -> float:
+    return float(p.scale if p.group_scale is None else p.group_scale[g])
+
+
+@dataclass(frozen=True)
+class Crop:
+    """A box of a ``RasterGrid``'s pixels, drawn on as a grid of its own: ``offset`` (x, y)
+    canvas px moves a centre from the full grid onto the crop (``render_samples`` reads
+    ``rho``, ``pad`` and ``shape``)."""
+
+    rho: float
+    pad: int
+    shape: tuple       # (H, W) raster px of the crop
+    corner: tuple      # (row, column) of the crop's first pixel in the full raster
+
+    @property
+    def offset(self) -> np.ndarray:
+        return np.array([self.corner[1], self.corner[0]], dtype=float) / self.rho
+
+
+class Window:
+    """The drawn units ``sub (K,)`` of ``p``, the active ones free to move: a placement,
+    its optimizer, its render plan and terms (fill weight ``w_fill``), on the raster box
+    around them (``box``: canvas px ``(x0, y0, x1, y1)``; None: the whole raster, as where a
+    layer rests on another's swept shadow)."""
+
+    def __init__(self, p: Problem, sub: np.ndarray, center: np.ndarray, active: np.ndarray,
+                 foot_w: np.ndarray, foot_h: np.ndarray, lr: float, w_fill: float = 0.0,
+                 box=None):
+        dev = torch.device(p.device)
+        self.sub, self.box = sub, box
+        grid, terms = p.grid, p.terms
+        self.offset = np.zeros(2)
+        if box is not None:
+            h, w = grid.shape
+            c0, r0 = (max(int(np.floor(v * grid.rho)), 0) for v in box[:2])
+            c1, r1 = min(int(np.ceil(box[2] * grid.rho)) + 2 * grid.pad, w), \
+                min(int(np.ceil(box[3] * grid.rho)) + 2 * grid.pad, h)
+            grid = Crop(grid.rho, grid.pad, (r1 - r0, c1 - c0), (r0, c0))
+            n_layers = terms.penalty.shape[0]
+
+            def cut(field):
+                return field.view(n_layers, h, w)[:, r0:r1, c0:c1].reshape(n_layers, -1).contiguous()
+
+            terms = dataclasses.replace(terms, penalty=cut(terms.penalty), outside=cut(terms.outside),
+                                        inside=cut(terms.inside), shape=grid.shape)
+            self.offset = grid.offset
+        self.terms = dataclasses.replace(terms, w_fill=w_fill, sums=None, _cover=None,
+                                         _tables=None, _onehot=None, _obstacle=None)
+        theta = p.placement.theta.detach().cpu().numpy()[sub]
+        self.place = Placement(center[sub] - self.offset, theta, active[sub],
+                               np.zeros(len(sub), bool), dev)
+        self.optimizer = Adam([{"params": [self.place.t], "lr": lr}], betas=(0.8, 0.95))
+        rotating = np.abs(theta) > 1e-6
+        planner = Planner(p.sprite[sub], p.sprite_sides, rotating, p.pyramids, grid, dev,
+                          p.sprite_aspects)
+        self.plan = planner.plan_for(foot_w[sub], foot_h[sub])
+        self.layer = torch.as_tensor(p.layer[sub], device=dev, dtype=torch.long)
+        self.sample_layer = self.layer[self.plan.owner] if self.terms.penalty.shape[0] > 1 else None
+        self.hw = torch.as_tensor(foot_w[sub], device=dev, dtype=torch.float32)
+        self.hh = torch.as_tensor(foot_h[sub], device=dev, dtype=torch.float32)
+        self.grid, self.pyramids = grid, p.pyramids
+        self.full = torch.as_tensor(p.grid.canvas, dtype=torch.float32)
+        # (K,) the drawn units whose footprint lies wholly in the box: their shares are whole
+        radius = np.hypot(foot_w[sub], foot_h[sub])[:, None]
+        self.whole = np.ones(len(sub), bool) if box is None else \
+            ((center[sub] - radius >= box[:2]) & (center[sub] + radius <= box[2:])).all(1)
+
+    def centers(self) -> np.ndarray:
+        """``(K, 2)`` the drawn units' centres, canvas px of the full grid."""
+        return self.place.t.detach().cpu().numpy().astype(np.float64) + self.offset
+
+    def render(self, center=None):
+        center = self.place.transforms()[0] if center is None else center
+        return render_samples(center, self.place.theta, self.hw, self.hh, self.plan,
+                              self.pyramids, self.grid)
+
+    def step(self, lr: float, ink: torch.Tensor) -> None:
+        values, index, _ = self.render()
+        loss = CanvasLoss.apply(values, index, self.sample_layer, self.terms)
+        self.optimizer.param_groups[0]["lr"] = lr
+        self.optimizer.zero_grad()
+        loss.backward()
+        self.optimizer.step()
+        with torch.no_grad():   # on the full canvas, with all their ink
+            off = torch.as_tensor(self.offset, dtype=torch.float32)
+            low = torch.minimum(ink, self.full / 2)
+            self.place.t.copy_(torch.minimum(torch.maximum(self.place.t + off, low),
+                                             self.full - low) - off)
+
+    @torch.no_grad()
+    def shares(self, center=None) -> tuple[np.ndarray, np.ndarray]:
+        """``(K,)`` each drawn unit's overlapped plus outside share of its ink, and ``(K,)``
+        its ink (raster px^2 of alpha), at ``center`` (full-grid canvas px; None: where they
+        are)."""
+        if center is not None:
+            center = torch.as_tensor(center - self.offset, dtype=torch.float32)
+        values, index, owner = self.render(center)
+        t = self.terms
+        over = t.unit_overlap(values, index, owner, self.layer, len(self.sub))
+        size = t.penalty.shape[1]
+        outside = t.outside.reshape(-1).index_select(0, index.long() + self.layer[owner] * size)
+        out = torch.zeros_like(over).index_add_(0, owner, values * outside)
+        drawn = torch.zeros_like(over).index_add_(0, owner, values)
+        return ((over + out) / drawn.clamp_min(1e-6)).cpu().numpy(), drawn.cpu().numpy()
+
+
+def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
+           settings: ReflowSettings, on_frame, cancel):
+    """Move the units of ``p`` from ``center (N, 2)`` (the warm start) that the change
+    reaches until none is crowded (module docstring); ``old (N, 2)``: each unit's centre in
+    the last layout (NaN for added units); ``grew (N,)``: the units added, moved or grown
+    since (only around them can a share have grown). Returns ``(center (N, 2), iterations,
+    cancelled, stats)``, or None when the window spreads past ``settings.spread`` or does
+    not settle in ``max_iterations``."""
+    n = len(p.layer)
+    scale = unit_scales(p)
+    band = footprint(p.margin)
+    foot_w, foot_h = p.half_w * band * scale, p.half_h * band * scale
+    radius = np.hypot(foot_w, foot_h)
+    movable = p.placement.movable.cpu().numpy().astype(bool)
+    center = center.copy()
+    cropped = p.terms.rests is None or not bool(p.terms.rests.any())
+    slack = settings.slack * float(radius.max())
+    share, before, ink_area = np.zeros(n), np.zeros(n), np.zeros(n)
+    if grew.any():   # each unit's share before and after the change, around the change
+        was = np.where(np.isnan(old), center, old)
+        spots = np.concatenate([center[grew], was[grew]])
+        box = bounds(spots, np.concatenate([radius[grew]] * 2), slack)
+        sub = np.nonzero(inside(center, radius, box))[0]
+        look = Window(p, sub, center, np.zeros(n, bool), foot_w, foot_h, 0.0, 0.0,
+                      box if cropped else None)
+        whole = sub[look.whole]
+        before[whole] = look.shares(was[sub])[0][look.whole] * ~np.isnan(old[whole, 0])
+        now, ink = look.shares()
+        share[whole], ink_area[whole] = now[look.whole], ink[look.whole]
+    allowed = settings.final_overlap * p.terms.norm
+    grown = (share - before) * movable
+    active = grown > settings.crowded
+    base_lr = STEPS.lr * float(np.mean(radius))
+    ink = torch.as_tensor(np.stack([foot_w, foot_h], 1) / band[:, None], dtype=torch.float32)
+    iterations, window, box, cancelled = 0, None, None, False
+    least, stall = np.inf, 0   # the least worst growth so far, and the rounds since it fell
+    while grown.max(initial=0.0) > settings.worst or \
+            float((np.maximum(grown, 0) * ink_area).sum()) > allowed:
+        if active.sum() > settings.spread * n or iterations >= settings.max_iterations:
+            return None
+        if cancel is not None and cancel():
+            cancelled = True
+            break
+        reach = bounds(center[active], radius[active], 0.0)
+        if box is None or (reach[:2] < box[:2] + slack / 2).any() or (reach[2:] > box[2:] - slack / 2).any():
+            box = bounds(center[active], radius[active], slack)
+        # every unit with ink in the box is drawn, the frozen ones as they are: the box's
+        # coverage is the layout's, and the fill term reads its holes truly
+        sub = np.nonzero(inside(center, radius, box))[0]
+        if window is None or not np.array_equal(window.sub, sub) \
+                or not np.array_equal(window.place.movable.cpu().numpy(), active[sub]):
+            window = Window(p, sub, center, active, foot_w, foot_h, base_lr, p.terms.w_fill,
+                            box if cropped else None)
+        for _ in range(settings.round_iterations):
+            gain = max(settings.floor, settings.gain * settings.gain_decay ** iterations)
+            window.step(base_lr * gain, ink[sub])
+            iterations += 1
+        center[sub] = window.centers()
+        if on_frame is not None:
+            on_frame(np.column_stack([center, np.degrees(p.placement.theta.detach().cpu().numpy()),
+                                      scale]).astype(np.float32))
+        whole = sub[window.whole]
+        now, drawn = window.shares()
+        share[whole], ink_area[whole] = now[window.whole], drawn[window.whole]
+        grown = (share - before) * movable
+        active |= grown > settings.crowded
+        worst = float(grown.max(initial=0.0))
+        stall = stall + 1 if worst > least - settings.progress else 0
+        least = min(least, worst)
+        if stall >= settings.patience:   # jammed: the frozen units pressed at all join
+            active[sub] |= grown[sub] > settings.touch
+            stall = 0
+    everyone = Window(p, np.arange(n), center, np.zeros(n, bool), foot_w, foot_h, 0.0)
+    return center, iterations, cancelled, final_stats(everyone, center, p.terms.w_fill)
+
+
+def bounds(center: np.ndarray, radius: np.ndarray, slack: float) -> np.ndarray:
+    """``(4,)`` canvas px ``(x0, y0, x1, y1)``: the box of the discs ``center (K, 2)``,
+    ``radius (K,)``, widened by ``slack`` on every side."""
+    return np.concatenate([(center - radius[:, None]).min(0) - slack,
+                           (center + radius[:, None]).max(0) + slack])
+
+
+def inside(center: np.ndarray, radius: np.ndarray, box: np.ndarray) -> np.ndarray:
+    """``(N,)`` bool: the discs with some part in ``box``."""
+    return ((center + radius[:, None] > box[:2]) & (center - radius[:, None] < box[2:])).all(1)
+
+
+def final_stats(window: Window, center: np.ndarray, w_fill: float) -> dict:
+    """The overlap, outside and fill shares and the loss (``w_fill`` its fill weight) of
+    the units of ``window`` at ``center``."""
+    with torch.no_grad():
+        values, index, _ = window.render(torch.as_tensor(center, dtype=torch.float32))
+        terms = dataclasses.replace(window.terms, w_fill=w_fill)
+        loss = CanvasLoss.apply(values, index, window.sample_layer, terms)
+        return dict(shares(terms.sums.sum(1).tolist(), terms.inside_total), loss=float(loss))
