@@ -55,7 +55,8 @@ class Legalize(Rule):
     ``uncross`` and ``resurface`` rules, with their default settings), and a shorter polish
     runs again, up to ``rounds`` (``rounds_open`` without a controlled scale); otherwise the
     layout is done. As a scale gives up size, the piles its layers form under directional
-    forces are pressed back to their floor (``press``): needed by open fills the marks
+    forces are pressed back to their floor (``press``; layers in strata are left as they
+    lie, ``alone``): needed by open fills the marks
     cannot pack at the asked scale, thin marks above all (12:1 arrows pushed right into a
     pen stood in three loose columns across it, pull 0.50 on the corpus's k2 line).
     ``max_iterations`` caps it all. Needed by data-true sizes that never push a mark out,
@@ -88,11 +89,24 @@ class Legalize(Rule):
             shrink = bad * np.maximum(np.maximum(c.shrink, wedged),
                                       give * np.maximum(s.overlap_g, s.outside_g))
             ctl.log -= shrink
-            if s.force_layers:
-                press(s.place, s.optimizer, s.force_layers, np.exp(-shrink)[ctl.unit_group])
+            piles = [(m, fs) for m, fs in s.force_layers if alone(p)[p.layer[int(m[0])]]]
+            if piles:
+                press(s.place, s.optimizer, piles, np.exp(-shrink)[ctl.unit_group])
             return True
         s.done = True
         return False
+
+
+def alone(p) -> np.ndarray:
+    """``(L,)`` bool: layers that see no other layer's ink as an obstacle, rest on none, and
+    that none sees or rests on (``press`` leaves strata as they lie: pressed toward one
+    floor, an upper stratum on a curved one sank into the stratum below it, three
+    snowflake strata in twin rings 0.94 in order, 0.83 pressed, seeds 0-4)."""
+    t = p.terms
+    tied = (t.blocks != 0).any(0) | (t.blocks != 0).any(1)
+    if t.rests is not None:
+        tied = tied | (t.rests != 0).any(0) | (t.rests != 0).any(1)
+    return ~tied.cpu().numpy()
 
 
 def pull_of(forces) -> tuple | None:
@@ -113,8 +127,7 @@ def press(place, optimizer, force_layers, unit_ratio: np.ndarray) -> None:
     Each free unit of a layer pulled by directional forces alone (``force_layers``:
     ``[(unit indices, forces), ...]``) moves along their net pull by ``1 - unit_ratio (N,)``
     (its scale's new size over its old) of its depth above the deepest centre of all the
-    layers pulled that way, as if the pile had shrunk from its floor (a stratum keeps
-    resting on the one below it)."""
+    layers pulled that way, as if the pile had shrunk from its floor."""
     free = movable(place)
     with torch.no_grad():
         center = place.transforms()[0].detach().cpu().numpy().astype(float)
