@@ -1,5 +1,4 @@
-"""``legalize``: the end of a polish, or another round of it at a little less scale (and
-the piles under directional forces pressed back to their floor as they shrink)."""
+"""``legalize``: the end of a polish, or another round of it at a little less scale."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -8,8 +7,7 @@ import numpy as np
 import torch
 
 from .resurface import resurface
-from ...design.forces import DirectionalForce
-from .state import Rule, State, forget, movable, unit_overlap
+from .state import Rule, State, unit_overlap
 from .uncross import uncross
 
 
@@ -54,18 +52,14 @@ class Legalize(Rule):
     ``shrink_max``), thin marks uncross and buried ones resurface (the moves of the
     ``uncross`` and ``resurface`` rules, with their default settings), and a shorter polish
     runs again, up to ``rounds`` (``rounds_open`` without a controlled scale); otherwise the
-    layout is done. As a scale gives up size, the piles its layers form under directional
-    forces are pressed back to their floor (``press``; layers in strata are left as they
-    lie, ``alone``): needed by open fills the marks
-    cannot pack at the asked scale, thin marks above all (12:1 arrows pushed right into a
-    pen stood in three loose columns across it, pull 0.50 on the corpus's k2 line).
+    layout is done.
     ``max_iterations`` caps it all. Needed by data-true sizes that never push a mark out,
     open piles, spiky marks, and hollow ones (whose contacts are a large share of their ink)."""
 
     name = "legalize"
     phase = "polish"
     reads = ("polish_left", "iteration", "overlap_g", "outside_g", "rounds", "values", "index",
-             "owner", "ctl", "force_layers")
+             "owner", "ctl")
     writes = ("rounds", "polish_left", "ctl", "place", "optimizer", "done")
     Settings = LegalizeSettings
 
@@ -86,60 +80,8 @@ class Legalize(Rule):
             # a wedged hollow unit's contact opens as the scale gives up a share of its size: the
             # shrink follows the worst unit's overlapped share, up to shrink_max
             wedged = np.minimum(c.gain_unit * worst, c.shrink_max)
-            shrink = bad * np.maximum(np.maximum(c.shrink, wedged),
-                                      give * np.maximum(s.overlap_g, s.outside_g))
-            ctl.log -= shrink
-            piles = [(m, fs) for m, fs in s.force_layers if alone(p)[p.layer[int(m[0])]]]
-            if piles:
-                press(s.place, s.optimizer, piles, np.exp(-shrink)[ctl.unit_group])
+            ctl.log -= bad * np.maximum(np.maximum(c.shrink, wedged),
+                                        give * np.maximum(s.overlap_g, s.outside_g))
             return True
         s.done = True
         return False
-
-
-def alone(p) -> np.ndarray:
-    """``(L,)`` bool: layers that see no other layer's ink as an obstacle, rest on none, and
-    that none sees or rests on (``press`` leaves strata as they lie: pressed toward one
-    floor, an upper stratum on a curved one sank into the stratum below it, three
-    snowflake strata in twin rings 0.94 in order, 0.83 pressed, seeds 0-4)."""
-    t = p.terms
-    tied = (t.blocks != 0).any(0) | (t.blocks != 0).any(1)
-    if t.rests is not None:
-        tied = tied | (t.rests != 0).any(0) | (t.rests != 0).any(1)
-    return ~tied.cpu().numpy()
-
-
-def pull_of(forces) -> tuple | None:
-    """The unit vector ``(vx, vy)`` of the net pull of ``forces`` when they are all
-    directional, else None (a point holds a pile where the container lets it, not at one
-    depth; a net pull of nothing holds it nowhere)."""
-    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
-        return None
-    net = np.sum([np.multiply(f.vector, f.strength) for f in forces], axis=0)
-    norm = float(np.hypot(*net))
-    return tuple(float(v) for v in net / norm) if norm > 1e-9 else None
-
-
-def press(place, optimizer, force_layers, unit_ratio: np.ndarray) -> None:
-    """Keep piles pressed as their scale gives up size: marks shrunk about their own centres
-    open a gap at every contact, which the legalising rounds, pressing with no force, would
-    leave open (a pile spread as loose as it was tight, thin marks over the whole pen).
-    Each free unit of a layer pulled by directional forces alone (``force_layers``:
-    ``[(unit indices, forces), ...]``) moves along their net pull by ``1 - unit_ratio (N,)``
-    (its scale's new size over its old) of its depth above the deepest centre of all the
-    layers pulled that way, as if the pile had shrunk from its floor."""
-    free = movable(place)
-    with torch.no_grad():
-        center = place.transforms()[0].detach().cpu().numpy().astype(float)
-        shift = np.zeros_like(center)
-        pulled = [(members.cpu().numpy(), pull_of(fs)) for members, fs in force_layers]
-        pulled = [(m, v) for m, v in pulled if v is not None]
-        deepest = {}
-        for m, v in pulled:
-            deepest[v] = max(deepest.get(v, -np.inf), float((center[m] @ np.asarray(v)).max()))
-        for m, v in pulled:
-            depth = deepest[v] - center[m] @ np.asarray(v)
-            shift[m] = ((1.0 - unit_ratio[m]) * depth)[:, None] * np.asarray(v)[None, :]
-        moved = np.flatnonzero(free & (np.abs(shift).sum(1) > 0))
-        place.t[moved] += torch.as_tensor(shift[moved], dtype=place.t.dtype, device=place.t.device)
-    forget(optimizer, (place.t,), moved.tolist())
