@@ -4,7 +4,6 @@ container holds."""
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
@@ -98,10 +97,10 @@ def scale_cap(units: Units, layers, canvas, i: int) -> float:
     """The largest scale at which layer ``i``'s longest mark fits its container's widest disc."""
     mine = units.layer == i
     longest = float(np.max(np.maximum(units.half_w[mine], units.half_h[mine])))
-    return 0.95 * _widest_disc(layers[i].region, canvas) / longest
+    return 0.95 * widest_disc(layers[i].region, canvas) / longest
 
 
-def _widest_disc(container, canvas) -> float:
+def widest_disc(container, canvas) -> float:
     """Radius (canvas px) of the widest disc inside ``container`` on the canvas."""
     rho = min(1.0, 600.0 / max(canvas))
     return float(Region(container.coverage(canvas, rho), rho).depth.max())
@@ -161,7 +160,6 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                         break
                     hi, lo = lo, lo - math.log(2.0)
                 lo = _bisect(fits, lo, hi)
-                _warn_fill(layers, members, (math.exp(lo) / probe) ** 2)
                 out[g] = math.exp(lo) * math.sqrt(PACK_SLACK)
             continue
         top = math.log(min(caps[i] for i in members))
@@ -181,18 +179,6 @@ def _bisect(fits, lo: float, hi: float) -> float:
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if fits(math.exp(mid)) else (lo, mid)
     return lo
-
-
-def _warn_fill(layers, members, kept: float) -> None:
-    """Warn, for the layers of ``members`` that set ``fill=`` themselves, that their marks
-    cover only ``kept`` of the fill asked for (the share their footprints pack)."""
-    for i in members:
-        if layers[i].fill is not None:
-            warnings.warn(f"layer {layers[i].name!r}: fill={layers[i].fill:g} is more than its "
-                          f"marks' footprints pack into the container (spiky shapes and margins "
-                          f"need more room than their ink); laid out at "
-                          f"fill={layers[i].fill * kept:.2g}, the most that packs. Lower fill= "
-                          f"or use boundary='closed' to fill the container", stacklevel=2)
 
 
 def _crowding(units, layers, members, radius, regions) -> float:

@@ -1,0 +1,95 @@
+"""What a layout could not give is said: an open fill its marks do not reach, and a closed
+container left empty because one mark caps the scale (``layout/shortfall.py``)."""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from unitopia_widget.layout.prepare.bind import bind
+from unitopia_widget.layout.shortfall import warn_unreached_fill
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+BAR = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 10">'
+                  '<rect width="100" height="10" fill="#555"/></svg>')
+
+
+def said(run) -> list:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run()
+    return [str(w.message) for w in caught]
+
+
+def test_thin_bars_that_miss_their_open_fill_say_so_and_what_was_laid_out():
+    # 10:1 bars pushed right into an open pen jam across each other: at the default fill
+    # (none set) they reach 0.37 of the pen, silently until the check
+    c = uw.Chart(pd.DataFrame({"v": np.random.default_rng(1).uniform(1, 3, 30)}), mark=BAR,
+                 size="v", orientation=0.0, container=uw.Container.rect(20, 20, 260, 160),
+                 boundary="open", canvas=(300, 200), forces=[uw.DirectionalForce(0)], seed=0)
+    fills = [m for m in said(c.layout) if "fill=" in m]
+    assert len(fills) == 1 and "fill=0.5 is more than its marks reach" in fills[0], fills
+    assert "long thin marks" in fills[0] and "Lower fill=" in fills[0]
+    assert "margin" not in fills[0]       # none set: not a remedy
+    lowered = float(fills[0].split("laid out at fill=")[1].split(":")[0])
+    reached = float((c.units.area * c.result.unit_scale ** 2).sum()) / (260 * 160)
+    assert lowered == pytest.approx(reached, abs=0.01) and lowered < 0.8 * 0.5
+
+
+def band_chart(fill, margin=0.0):
+    """Ten discs open in a band 30 px high."""
+    return uw.Chart(pd.DataFrame({"v": np.ones(10)}), mark="circle", size="v", fill=fill,
+                    margin=margin, container=uw.Container.rect(0, 35, 400, 30),
+                    boundary="open", canvas=(400, 100))
+
+
+@pytest.mark.parametrize("kept", [0.95, 0.7])
+def test_an_open_fill_is_warned_only_when_the_final_scale_leaves_it_short(kept):
+    c = band_chart(0.2)
+    units = bind(c.df, c.layers)
+    asked = np.sqrt(0.2 * 400 * 30 / units.area.sum())
+    out = said(lambda: warn_unreached_fill(units, c.layers, c.canvas,
+                                           np.full(len(units.rows), kept * asked)))
+    assert len(out) == (kept < 0.9), out
+    if out:
+        assert "laid out at fill=0.098" in out[0] and "drawn at 70% of the size" in out[0]
+
+
+def test_a_band_narrower_than_its_marks_at_the_asked_fill_is_named_with_its_width():
+    # at fill 0.8 each disc would be 35 px across, in a band 30 px wide
+    c = band_chart(0.8, margin=0.4)
+    units = bind(c.df, c.layers)
+    asked = np.sqrt(0.8 * 400 * 30 / units.area.sum())
+    out = said(lambda: warn_unreached_fill(units, c.layers, c.canvas,
+                                           np.full(len(units.rows), 0.6 * asked)))
+    assert len(out) == 1, out
+    assert "the container is 30 px across at its widest and the largest mark would be" in out[0]
+    assert "margin=0.4 included" in out[0] and "lower margin=" in out[0]
+
+
+def tall_column(outlier: bool):
+    v = np.random.default_rng(0).lognormal(0, 0.3, 30)
+    if outlier:
+        v[7] = 40 * np.median(v)
+    return uw.Chart(pd.DataFrame({"v": v}, index=[f"r{i}" for i in range(30)]), mark="square",
+                    height="v", container=uw.Container.ellipse(200, 150, 150, 100),
+                    canvas=(400, 300), seed=0)
+
+
+@pytest.mark.parametrize("outlier", [True, False])
+def test_one_mark_that_caps_a_closed_scale_is_named_with_its_row_value_and_range(outlier):
+    c = tall_column(outlier)
+    capped = [m for m in said(c.layout) if "caps the scale" in m]
+    if not outlier:
+        assert not capped
+        return
+    assert len(capped) == 1, capped
+    value = c.df.loc["r7", "v"]
+    assert f"row 'r7' (height={value:.4g})" in capped[0]
+    assert "height_range=(min_px, max_px)" in capped[0] and "size_range" not in capped[0]
+    covered = float(capped[0].split("the marks cover ")[1].split("%")[0])
+    assert covered < 25

@@ -1,0 +1,125 @@
+"""What a layout could not give, said after the solve: an open container whose marks do not
+reach the fill asked of it, and a closed container left empty because its largest mark caps
+the scale. Read from the final scales (``Result.unit_scale``); warnings only, nothing moves."""
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from ..design.encodings import footprint
+from .prepare.pack import thin
+from .prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, widest_disc, scale_cap
+from .prepare.start import footprint_radius
+
+SHORT = 0.85      # an open fill whose marks' ink covers under this share of the ask is warned
+#                   (the issue's bound is 0.8; ink that pokes out or overlaps costs a little more)
+EMPTY = 0.5       # a closed container whose footprints cover under this share is left empty
+#                   (a full one's cover most of it: discs pack into about 0.9)
+CAPPED = 0.8      # a final scale at least this share of a layer's cap (its longest mark in the
+#                   container's widest disc) is held by that mark
+OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
+
+
+def containers(layers, boundary: str) -> list:
+    """``[[layer index, ...], ...]``: the layers of ``boundary`` grouped by the container they
+    share (regions compare by value)."""
+    groups = []   # [(region, [i])]
+    for i, layer in enumerate(layers):
+        if layer.boundary != boundary:
+            continue
+        group = next((g for region, g in groups if region == layer.region), None)
+        if group is None:
+            groups.append((layer.region, [i]))
+        else:
+            group.append(i)
+    return [g for _, g in groups]
+
+
+def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
+    """Warn for each open container whose marks, at their final scales ``unit_scale (N,)``,
+    cover under ``SHORT`` of the fill asked of it (its first layer's ``fill=``, else the
+    default): the fill it was laid out at, why (the container's widest part against the
+    largest mark, the footprints' and margins' share of it, the shrink that cleared the
+    overlaps) and what would help."""
+    for members in containers(layers, "open"):
+        asked = next((layers[i].fill for i in members if layers[i].fill is not None),
+                     DEFAULT_OPEN_FILL)
+        mine = np.isin(units.layer, members)
+        area = layers[members[0]].region.area(canvas)
+        covered = float((units.area[mine] * unit_scale[mine] ** 2).sum()) / area
+        if covered >= SHORT * asked:
+            continue
+        at_ask = math.sqrt(asked * area / float(units.area[mine].sum()))   # px per unit side
+        why, margin = [], float(np.median(units.margin[mine]))
+        longest = 2 * float(np.max(np.maximum(units.half_w[mine], units.half_h[mine]))) * at_ask
+        wide = 2 * widest_disc(layers[members[0]].region, canvas)
+        if longest > 0.95 * wide:
+            why.append(f"the container is {wide:.0f} px across at its widest and the largest "
+                       f"mark would be {longest:.0f} px long")
+        discs = float((math.pi * footprint_radius(units)[mine] ** 2).sum()) * at_ask ** 2 / area
+        slender = thin(units.half_w[mine], units.half_h[mine]).mean() > 0.5
+        if discs > MAX_COVER and not slender:
+            with_margin = f", margin={margin:g} included" if margin > 0 else ""
+            why.append(f"the marks' footprints (the discs they pack as{with_margin}) would cover "
+                       f"{discs:.0%} of it, and discs pack into at most {MAX_COVER:.0%}")
+        if slender:
+            why.append("long thin marks jam across each other before they pack side by side")
+        size = math.sqrt(covered / asked)
+        drawn = f"the marks were drawn at {size:.0%} of the size that fill asks, where they " \
+            f"neither overlap nor poke out"
+        because = f"{'; '.join(why)}; so {drawn}" if why else drawn
+        names = ("layers " if len(members) > 1 else "layer ") + \
+            ", ".join(repr(layers[i].name) for i in members)
+        helps = [f"lower fill= (to about {covered:.2g})"] + (["lower margin="] if margin > 0 else []) \
+            + ["give the marks a wider container",
+               "or use boundary='closed' to fill it as far as they pack"]
+        helps = ", ".join(helps)
+        warnings.warn(f"{names}: fill={asked:g} is more than its marks reach in the container; "
+                      f"laid out at fill={covered:.2g}: {because}. {helps[0].upper()}{helps[1:]}",
+                      stacklevel=3)
+
+
+def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
+    """Warn for each closed container (its scale grown by the solver) whose marks' footprints
+    cover under ``EMPTY`` of it because one mark, ``OUTLIER`` times the median or longer,
+    holds the scale at its cap: the row, its value in the bound size channels (from ``df``,
+    the rows by index label), the sizes drawn, and the ``*_range=`` that would help."""
+    for members in containers(layers, "closed"):
+        if any(layers[i].fill is not None for i in members):
+            continue   # a fixed scale: the fill asked for, not a cap
+        mine = np.isin(units.layer, members)
+        area = layers[members[0]].region.area(canvas)
+        foot = units.area * footprint(units.margin) ** 2
+        covered = float((foot[mine] * unit_scale[mine] ** 2).sum()) / area
+        if covered >= EMPTY:
+            continue
+        long = 2 * np.maximum(units.half_w, units.half_h) * unit_scale   # px
+        for i in members:
+            at = units.layer == i
+            if unit_scale[at][0] < CAPPED * scale_cap(units, layers, canvas, i):
+                continue
+            j = int(np.flatnonzero(at)[np.argmax(long[at])])
+            median = float(np.median(long[mine]))
+            if long[j] < OUTLIER * median:
+                continue
+            row = units.rows[j]
+            bound = [(c, layers[i].encodings[c]) for c in ("size", "width", "height")
+                     if isinstance(layers[i].encodings[c], str)]
+            values = ", ".join(f"{c}={_shown(df.loc[row, col])}" for c, col in bound)
+            ranges = " or ".join(f"{c}_range=(min_px, max_px)" for c, _ in bound) or \
+                "size_range=, width_range= or height_range="
+            warnings.warn(f"layer {layers[i].name!r}: row {row!r}"
+                          f"{f' ({values})' if values else ''} is the largest mark and caps "
+                          f"the scale: {long[j]:.0f} px long, the most the container holds, "
+                          f"{long[j] / median:.0f}x the median mark "
+                          f"({median:.2g} px), so the marks cover {covered:.0%} of the closed "
+                          f"container and leave the rest empty. Map the column onto a range of "
+                          f"drawn sizes ({ranges}), bind a log-scaled column (np.log1p), or "
+                          f"leave the row out", stacklevel=3)
+
+
+def _shown(value) -> str:
+    """A cell of the data as the warning shows it: numbers to 4 significant digits."""
+    return f"{value:.4g}" if isinstance(value, (int, float, np.number)) else repr(value)
