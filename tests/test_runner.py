@@ -184,6 +184,7 @@ def test_a_failing_chart_layout_keeps_the_previous_one(df, monkeypatch):
     def solve(*args, **kwargs):
         raise MemoryError("out of memory")
     monkeypatch.setattr(engine, "solve", solve)
+    chart.seed = 1   # a changed input: an unchanged run would return the last layout unsolved
     with pytest.raises(MemoryError):
         chart.layout()
     assert chart.placements is table and chart.result is result
@@ -198,6 +199,15 @@ def test_run_wait_returns_the_layout_and_the_front_end_shows_it(df):
     assert table is w.placements and len(table) == len(df)
     assert w.status == "done" and w.error == "" and w.frame_count >= 1
     assert w.progress["max_iterations"] == 20
+    assert_frame_is_layout(w)
+
+
+def test_run_again_unchanged_shows_the_last_layout_as_done(df):
+    w = uw.UnitoPia(df, size="v", mark=CIRCLE, iterations=20)
+    table = w.run(wait=True)
+    first = dict(w.progress)
+    assert w.run(wait=True) is table and w.status == "done" and w.error == ""
+    assert w.progress["phase"] == "finish" and w.progress["iteration"] == first["iteration"]
     assert_frame_is_layout(w)
 
 
@@ -251,6 +261,7 @@ def test_an_error_during_a_run_keeps_the_layout_and_every_sketch(df, monkeypatch
     failing_after_first(monkeypatch)
     w = sketched_widget(df)
     table = w.run(wait=True)
+    w.layer("b").set(iterations=21)   # a changed input: an unchanged run returns the last layout
     frame, design = w.frame, copy.deepcopy(w.design)
     with pytest.warns(RuntimeWarning, match=r"UnitoPia layout failed: RuntimeError: solver exploded"), \
             pytest.raises(RuntimeError, match="solver exploded"):
@@ -378,6 +389,7 @@ def test_stop_during_a_long_setup_step_returns_at_once_and_keeps_the_layout(df, 
         release.wait(30)
         return real(*args, **kwargs)
     monkeypatch.setattr(engine, "build_problem", slow)
+    w.layer(0).set(iterations=21)   # a changed input: an unchanged run returns the last layout
     w.run()
     assert inside.wait(30)
     began = time.monotonic()
