@@ -82,6 +82,11 @@ class CanvasTerms:
         return self.inside.cpu().numpy()
 
     @functools.cached_property
+    def any_inside(self) -> bool:
+        """Whether some layer has a fill target (a closed container; read once: it is fixed)."""
+        return bool(self.inside.any())
+
+    @functools.cached_property
     def any_blocks(self) -> bool:
         """Whether some layer sees another's ink itself (read once: the blocks are fixed)."""
         return bool(self.blocks.any())
@@ -259,7 +264,10 @@ class CanvasLoss(torch.autograd.Function):
         cover.index_add_(0, flat, values)
         total = terms.totals(cover, flat)                                       # T = C + O
         cover.zero_()                                                           # leave the buffer zeroed
-        penalty, outside, inside = (t.index_select(0, flat) for t in terms.tables())
+        tables = terms.tables()
+        penalty, outside = tables[0].index_select(0, flat), tables[1].index_select(0, flat)
+        # the fill target is gathered only where some layer has one (open layouts: all 0)
+        inside = tables[2].index_select(0, flat) if terms.any_inside else None
         spill = torch.relu(total - 1.0)
         share = values / total.clamp_min(1e-6)   # the sample's share of its pixel, per unit of T
         # per layer: overlap (its share of the spill), outside, drawn alpha, the container
@@ -269,7 +277,10 @@ class CanvasLoss(torch.autograd.Function):
         torch.mul(share, spill, out=rows[0])
         torch.mul(values, outside, out=rows[1])
         rows[2].copy_(values)
-        torch.mul(share, inside, out=rows[3]).mul_(total.clamp(max=1.0))
+        if inside is None:   # no fill target: nothing covered (0 at every sample)
+            rows[3].zero_()
+        else:
+            torch.mul(share, inside, out=rows[3]).mul_(total.clamp(max=1.0))
         torch.mul(values, penalty, out=rows[4])
         sums = terms.per_layer(rows, layer)                                    # (5, L)
         terms.sums = sums[:4].detach()
@@ -280,7 +291,7 @@ class CanvasLoss(torch.autograd.Function):
         # 0 else) instead of where(): a third of the time on a CPU
         grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm) \
             .add_(penalty, alpha=terms.w_contain / terms.norm)
-        if terms.w_fill:
+        if terms.w_fill and inside is not None:   # with no fill target the term adds 0
             grad.addcmul_(inside, torch.sign((1.0 - total).clamp_min_(0.0)), value=-terms.w_fill / terms.norm)
         ctx.save_for_backward(grad)
         return loss
