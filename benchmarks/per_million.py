@@ -4,7 +4,8 @@ A million rows of transactions (a payment kind of four, skewed 50/30/15/5 %), dr
 ``per=100`` coloured by kind: the seconds the rows take to bind (``Chart(...)``, which
 groups them with pandas, and ``bind`` alone), the marks they make, and the seconds the
 layout takes, as a grid of squares in a rectangle (``arrange="grid"``: the ISOTYPE chart)
-and, with ``--free``, packed freely (the default arrangement; minutes at 10,000 marks).
+and, with ``--free``, packed freely (the default arrangement; 23 to 37 s at 10,000 marks on
+the shared 2-core Xeon).
 Also the refusal of 25,000 rows without ``per=``, timed, and the per= it names.
 
     OMP_NUM_THREADS=2 python benchmarks/per_million.py [--rows 1000000] [--per 100] [--free]

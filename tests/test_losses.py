@@ -213,6 +213,30 @@ def test_repeated_calls_on_the_same_terms_do_not_leak_coverage():
     assert again == pytest.approx(0.2 + 0.2 * (8 - 1.0), abs=1e-12)   # excess + w_fill * gap
 
 
+@pytest.mark.parametrize("dtype", [torch.float32, D])
+def test_an_open_layout_skips_the_fill_target_and_gets_the_same_numbers(dtype):
+    # no layer has a fill target: the forward leaves the inside table out; forced through
+    # it (any_inside set), every number agrees to the last bit
+    values, index, layer, _ = random_case(5, 2, 12, 60, None)
+    values = values.to(dtype)
+    g = torch.Generator().manual_seed(5)
+    penalty, outside = torch.rand(2, 12, generator=g), torch.rand(2, 12, generator=g)
+
+    def run(force):
+        terms = make_terms(n_layers=2, size=12, dtype=dtype, penalty=penalty, outside=outside,
+                           w_contain=0.7, w_fill=0.15, norm=3.7)
+        assert not terms.any_inside
+        if force:
+            terms.any_inside = True
+        v = values.clone().requires_grad_(True)
+        loss = CanvasLoss.apply(v, index, layer, terms)
+        (grad,) = torch.autograd.grad(loss, v)
+        return loss.detach(), grad, terms.sums
+
+    for skipped, full in zip(run(False), run(True)):
+        assert torch.equal(skipped, full)
+
+
 @pytest.mark.parametrize("blocks", [None, [[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, 0], [0, 0, 0], [0, 1, 0]]])
 def test_the_units_shares_of_the_overlap_add_up_to_each_layers_overlap(blocks):
     values, index, layer, terms = random_case(5, 3, 10, 50, blocks)

@@ -82,7 +82,7 @@ def rebase(base: Problem, units, layers) -> Problem | None:
     band = footprint(units.margin)
     terms = dataclasses.replace(
         base.terms, norm=float((units.area * band ** 2 * unit_scale ** 2).sum()) * base.grid.rho ** 2,
-        sums=None, _cover=None, _tables=None, _onehot=None, _obstacle=None)
+        sums=None, _cover=None, _tables=None, _rows=None, _onehot=None, _obstacle=None)
     n = len(units.rows)
     placement = Placement(np.zeros((n, 2)), np.zeros(n), np.ones(n, bool),
                           np.array([layers[li].rotate for li in units.layer], bool), base.device)
@@ -219,7 +219,7 @@ class Window:
                                         inside=cut(terms.inside), shape=grid.shape)
             self.offset = grid.offset
         self.terms = dataclasses.replace(terms, w_fill=w_fill, sums=None, _cover=None,
-                                         _tables=None, _onehot=None, _obstacle=None)
+                                         _tables=None, _rows=None, _onehot=None, _obstacle=None)
         theta = p.placement.theta.detach().cpu().numpy()[sub]
         self.place = Placement(center[sub] - self.offset, theta, active[sub],
                                np.zeros(len(sub), bool), dev)

@@ -82,7 +82,7 @@ def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
         outside=torch.cat([terms.outside, terms.outside[source]]),
         inside=torch.cat([terms.inside, torch.zeros_like(terms.inside[source])]),
         blocks=blocks, rests=rests, sweeps=tuple(terms.sweeps) + (None,) * len(slabs),
-        sums=None, _cover=None, _tables=None, _onehot=None, _obstacle=None)
+        sums=None, _cover=None, _tables=None, _rows=None, _onehot=None, _obstacle=None)
     center = p.placement.t.detach().cpu().numpy().astype(float)
     theta = p.placement.theta.detach().cpu().numpy().astype(float)
     movable = p.placement.movable.cpu().numpy().copy()
