@@ -275,7 +275,7 @@ class Chart(Piling, HandControl):
         if self._unchanged(origin, inputs):   # the last run's layout, its progress and frame
             result = self.laid.result
             if on_progress is not None:
-                on_progress(result.iterations, result.stats["loss"], result.stats)
+                on_progress(result.iterations, result.stats["loss"], {**result.stats, "phase": "kept"})
             if on_frame is not None:
                 on_frame(self.laid.frames[-1].copy())
             return self.laid.placements
