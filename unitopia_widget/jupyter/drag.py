@@ -4,20 +4,21 @@ The front end sends ``{"type": "drag", ...}`` with the dragged marks' position a
 100 ms and ``{"type": "pin", ...}`` on the drop (docs/protocol.md). Each message pins the
 marks there and starts a warm run, which a pin change answers with the local reflow
 (``layout/reflow.py``), streaming its frames. One worker thread takes the messages in turn
-and keeps only the newest waiting one: a message arriving while a run goes cancels that run
-(it keeps its frame so far, the next run starts from it), so the latest position wins and no
-queue builds up. The drop's run is not cut short by anything but a new drag: it ends with
-the usual final layout (status "done", the static image refreshed); the drag's runs skip
+and keeps only the newest waiting one: a message arriving while a run goes ends that run once
+it has taken ``DRAG_STEPS`` steps (it keeps its frame so far, the next run starts from it), so
+the latest position wins and no queue builds up. The drop's run is not cut short by anything
+but a new drag: it ends with the usual final layout (status "done", the static image refreshed); the drag's runs skip
 that image.
 """
 from __future__ import annotations
 
 import threading
 
+DRAG_STEPS = 4   # steps a drag's run takes before a newer position may end it
 
 class LiveDrag:
-    """``UnitoPia``'s live drag; needs ``_pin_units``, ``run`` and ``_on_error``; its runs'
-    ``cancel`` asks ``_superseded`` too."""
+    """``UnitoPia``'s live drag; needs ``_pin_units``, ``run`` and ``_on_error``; its runs go
+    through ``_supersedable``."""
 
     _dragging = False   # a drag's run (not the drop's) is going: ``_on_done`` skips the static image
 
@@ -26,7 +27,7 @@ class LiveDrag:
         waiting message and cancels the running run of an earlier one."""
         with self._drag_lock:
             self._drag_next = (index, x, y, final)
-            if self._drag_worker is not None:   # its run ends at its next step (``superseded``)
+            if self._drag_worker is not None:   # its run ends soon (``_supersedable``)
                 return
             self._drag_worker = threading.Thread(target=self._drag_loop, name="unitopia-drag",
                                                  daemon=True)
@@ -55,6 +56,13 @@ class LiveDrag:
         self._drag_next = None     # (units, x, y, final) waiting for the worker
         self._drag_worker = None   # the worker thread, None when idle
 
-    def _superseded(self) -> bool:
-        """Whether a newer drag or drop waits: the running run ends for it."""
-        return self._drag_next is not None
+    def _supersedable(self, on_frame, cancel):
+        """``(on_frame, cancel)`` for a run: it also ends when a newer drag or drop waits, once
+        it has taken ``DRAG_STEPS`` steps (offered as many frames): its setup is not wasted,
+        and each position the pointer passes moves the marks around it."""
+        steps = [0]
+
+        def counted(*frame):
+            steps[0] += 1
+            on_frame(*frame)
+        return counted, lambda: cancel() or (steps[0] >= DRAG_STEPS and self._drag_next is not None)

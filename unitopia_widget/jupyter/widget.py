@@ -280,14 +280,13 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
 
     def _job(self, on_frame, cancel):
         started = time.perf_counter()
-        given = cancel
-        cancel = lambda: given() or self._superseded()   # noqa: E731  a newer drag ends it
+        on_frame, stop = self._supersedable(on_frame, cancel)   # a newer drag ends it too
 
         def progress(i, loss, stats):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss,
                               "phase": stats["phase"], "seconds": time.perf_counter() - started}
         try:   # every iteration offers its frame: the runner sends at most its fps a second
-            return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
+            return self._chart.layout(on_frame=on_frame, cancel=stop, on_progress=progress,
                                       abort=cancel, fresh=self._fresh, frame_every=1,
                                       warn_bindings=False)   # run() warned
         except Cancelled:   # stopped before its first step: nothing to keep
