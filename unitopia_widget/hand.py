@@ -154,6 +154,13 @@ class HandControl:
             return None, inputs
         return (self._origin if self._same_inputs(inputs) else self._snapshot), inputs
 
+    def start_from_last(self) -> None:
+        """Let the next run start from the last layout even when that run was stopped and
+        nothing changed since (a run again then starts over from that run's start): a live
+        drag's reflow cut short by the next position leaves the marks where the user sees them
+        (``jupyter/drag.py``)."""
+        self._origin = self._snapshot
+
     def _same_inputs(self, inputs) -> bool:
         """Whether ``inputs`` (``_start_from``'s) are the last run's: the same design text,
         equal rows (values, dtypes, index and columns) and the same device."""

@@ -22,6 +22,7 @@ from ..chart import ARGUMENTS, Chart, check_kwargs
 from ..design.files import load_design
 from ..design.encodings import rgba
 from .keep import DesignFile, KeptDesign
+from .drag import LiveDrag
 from .pins import Pinning
 from .notebook import StaticDisplay
 from ..output.publish import axes_image, legend_image
@@ -42,7 +43,7 @@ class _SyncedChart(Chart):
             self.widget._push_design()
 
 
-class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
+class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
     """A pictorial unit chart in the notebook: ``UnitoPia(df, mark="star", size="Duration")``.
 
     Arguments (all but ``df`` keyword-only): ``mark`` (a shape name, an icon name such as
@@ -123,6 +124,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
         self._frame_error = None  # a frame that could not be sent ends the run as an error
         self._fresh = False       # the run asked for a fresh start (run(fresh=True))
         self._static = StaticDisplay(self)
+        self._init_drag()
         chart.widget = self
         self.fields = _fields(chart.df)
         self._push_design()
@@ -278,12 +280,13 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
 
     def _job(self, on_frame, cancel):
         started = time.perf_counter()
+        on_frame, stop = self._supersedable(on_frame, cancel)   # a newer drag ends it too
 
         def progress(i, loss, stats):
             self._progress = {"iteration": i, "max_iterations": self._cap(), "loss": loss,
                               "phase": stats["phase"], "seconds": time.perf_counter() - started}
         try:   # every iteration offers its frame: the runner sends at most its fps a second
-            return self._chart.layout(on_frame=on_frame, cancel=cancel, on_progress=progress,
+            return self._chart.layout(on_frame=on_frame, cancel=stop, on_progress=progress,
                                       abort=cancel, fresh=self._fresh, frame_every=1,
                                       warn_bindings=False)   # run() warned
         except Cancelled:   # stopped before its first step: nothing to keep
@@ -321,7 +324,7 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
             self._error_from = None
             self._quiet(error="")
         self._quiet(progress=final, status="stopped" if stopped else "done")
-        self._push_extras(static=True)
+        self._push_extras(static=not self._dragging)   # a drag's runs: the drop's run draws it
 
     def _quiet(self, **traits) -> None:
         """Set traits whose sync may fail (a dead comm): the Python side keeps the values."""
@@ -450,8 +453,8 @@ class UnitoPia(Pinning, KeptDesign, anywidget.AnyWidget):
             self._safe(lambda: self._icons(msg.get("query")))()
         elif kind == "dismiss-error":
             self.dismiss_error()
-        elif kind == "pin":
-            self._safe(lambda: self._pin_units(msg.get("units"), msg.get("x"), msg.get("y")))()
+        elif kind in ("drag", "pin"):   # live drag (drag.py): pin, reflow; "pin" is the drop
+            self._drag(msg.get("units"), msg.get("x"), msg.get("y"), final=kind == "pin")
 
     def _safe(self, fn):
         def call():

@@ -1390,13 +1390,45 @@ function strokeTool(view, finish, look) {
   };
 }
 
+// src/throttle.js
+var timers = {
+  now: () => performance.now(),
+  later: (fn, ms) => setTimeout(fn, ms),
+  clear: (id) => clearTimeout(id)
+};
+function throttle(fn, ms, clock = timers) {
+  let last = -Infinity;
+  let held = null;
+  let timer = null;
+  const fire = () => {
+    timer = null;
+    last = clock.now();
+    const args = held;
+    held = null;
+    fn(...args);
+  };
+  const call = (...args) => {
+    held = args;
+    const wait = last + ms - clock.now();
+    if (wait <= 0 && timer === null) fire();
+    else if (timer === null) timer = clock.later(fire, wait);
+  };
+  call.cancel = () => {
+    if (timer !== null) clock.clear(timer);
+    timer = held = null;
+  };
+  return call;
+}
+
 // src/tools/select.js
+var DRAG_MS = 100;
 var additive = (ev) => !!(ev.shiftKey || ev.ctrlKey || ev.metaKey);
 var rp = (p) => [round2(p[0]), round2(p[1])];
 function select(view) {
   let grab = null;
   let lasso = null;
   let drag = null;
+  const live = throttle((d, p) => send("drag", d, p), DRAG_MS);
   function find(p, design, li) {
     const layer = design.layers[li];
     if (!layer) return null;
@@ -1462,7 +1494,9 @@ function select(view) {
         view.pick(null);
         const sel = view.selected();
         const indices = ev.shiftKey && sel.has(found.index) ? [...sel] : [found.index];
-        drag = { index: found.index, indices, start: p, at: p, moved: false, additive: additive(ev) };
+        const frame = view.frame();
+        const from = indices.filter((i) => frame && 4 * i + 1 < frame.length).map((i) => [i, frame[4 * i], frame[4 * i + 1]]);
+        drag = { index: found.index, indices, from, start: p, at: p, moved: false, additive: additive(ev) };
         return;
       }
       if (found) {
@@ -1479,6 +1513,7 @@ function select(view) {
         if (!drag.moved && (dist(p, drag.start) < 2 * view.unit() || view.model.get("status") === "running")) return;
         drag.moved = true;
         drag.at = p;
+        live(drag, p);
       } else if (grab) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
@@ -1487,7 +1522,8 @@ function select(view) {
     },
     up(p) {
       if (drag) {
-        if (drag.moved) pinAt(drag, p);
+        live.cancel();
+        if (drag.moved) send("pin", drag, p);
         else view.toggleSelect([drag.index], drag.additive);
         drag = null;
       } else if (grab) {
@@ -1502,6 +1538,7 @@ function select(view) {
       }
     },
     cancel() {
+      live.cancel();
       if (grab) view.setDraft(null);
       grab = lasso = drag = null;
     },
@@ -1524,13 +1561,12 @@ function select(view) {
     }
   };
   function moved(d, at = d.at) {
-    const frame = view.frame();
     const [dx, dy] = [at[0] - d.start[0], at[1] - d.start[1]];
-    return d.indices.filter((i) => frame && 4 * i + 1 < frame.length).map((i) => [i, round2(frame[4 * i] + dx), round2(frame[4 * i + 1] + dy)]);
+    return d.from.map(([i, x, y]) => [i, round2(x + dx), round2(y + dy)]);
   }
-  function pinAt(d, p) {
+  function send(type, d, p) {
     const marks = moved(d, p);
-    if (marks.length) view.send({ type: "pin", units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+    if (marks.length) view.send({ type, units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
   }
   function ghost(ctx, i, x, y, unit) {
     const units = view.units();

@@ -2,12 +2,17 @@
 // Backspace removes the picked one); click a mark to select it (Shift, Ctrl or Cmd toggles); drag on
 // empty space to lasso-select marks. Drags show a draft design and commit once on release.
 // After a run, dragging a mark pins it where it is dropped (a "pin" message: the kernel
-// pins the rows); Shift-dragging a selected mark moves and pins the whole selection.
+// pins the rows and lays out); Shift-dragging a selected mark moves and pins the whole selection.
+// While the mark is dragged its position goes to the kernel at most every DRAG_MS ("drag"
+// messages): the kernel pins it there and reflows, so the marks around it move aside live.
 import { clone, removeForce, setContainer, setEmitter, translateContainer, updateLayer } from "../design-edit.js";
 import { angleDeg, closeStroke, dist, distToPolyline, round2 } from "../geometry.js";
 import { containerOutline, containerPath, directionArrow, insideContainer } from "../shapes.js";
 import { Stroke } from "./stroke.js";
 import { drawPin } from "../draw-overlay.js";
+import { throttle } from "../throttle.js";
+
+export const DRAG_MS = 100; // the most often a dragged mark's position goes to the kernel
 
 /** Shift-, Ctrl- or Cmd-click adds to (toggles in) the selection. */
 const additive = (ev) => !!(ev.shiftKey || ev.ctrlKey || ev.metaKey);
@@ -16,7 +21,8 @@ const rp = (p) => [round2(p[0]), round2(p[1])];
 export function select(view) {
   let grab = null; // {kind, index, start, design}
   let lasso = null;
-  let drag = null; // a mark drag: {index, indices, start, at, moved, additive}
+  let drag = null; // a mark drag: {index, indices, from: [[unit, x, y]] where they were, start, at, moved, additive}
+  const live = throttle((d, p) => send("drag", d, p), DRAG_MS);
 
   function find(p, design, li) {
     const layer = design.layers[li];
@@ -86,7 +92,9 @@ export function select(view) {
         view.pick(null);
         const sel = view.selected();
         const indices = ev.shiftKey && sel.has(found.index) ? [...sel] : [found.index];
-        drag = { index: found.index, indices, start: p, at: p, moved: false, additive: additive(ev) };
+        const frame = view.frame();
+        const from = indices.filter((i) => frame && 4 * i + 1 < frame.length).map((i) => [i, frame[4 * i], frame[4 * i + 1]]);
+        drag = { index: found.index, indices, from, start: p, at: p, moved: false, additive: additive(ev) };
         return;
       }
       if (found) {
@@ -103,6 +111,7 @@ export function select(view) {
         if (!drag.moved && (dist(p, drag.start) < 2 * view.unit() || view.model.get("status") === "running")) return;
         drag.moved = true;
         drag.at = p;
+        live(drag, p);
       } else if (grab) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
@@ -111,7 +120,8 @@ export function select(view) {
     },
     up(p) {
       if (drag) {
-        if (drag.moved) pinAt(drag, p);
+        live.cancel(); // the drop's pin is the last word
+        if (drag.moved) send("pin", drag, p);
         else view.toggleSelect([drag.index], drag.additive);
         drag = null;
       } else if (grab) {
@@ -126,6 +136,7 @@ export function select(view) {
       }
     },
     cancel() {
+      live.cancel();
       if (grab) view.setDraft(null);
       grab = lasso = drag = null;
     },
@@ -148,17 +159,17 @@ export function select(view) {
     },
   };
 
-  /** [unit, x, y] of each dragged mark at the drag's end `at`. */
+  /** [unit, x, y] of each dragged mark at the drag's end `at` (from where it was when the drag
+   * began: the live frames already show it pinned along the way). */
   function moved(d, at = d.at) {
-    const frame = view.frame();
     const [dx, dy] = [at[0] - d.start[0], at[1] - d.start[1]];
-    return d.indices.filter((i) => frame && 4 * i + 1 < frame.length)
-      .map((i) => [i, round2(frame[4 * i] + dx), round2(frame[4 * i + 1] + dy)]);
+    return d.from.map(([i, x, y]) => [i, round2(x + dx), round2(y + dy)]);
   }
 
-  function pinAt(d, p) {
+  /** A "drag" (live) or "pin" (drop) message: the dragged marks at the drag's end `p`. */
+  function send(type, d, p) {
     const marks = moved(d, p);
-    if (marks.length) view.send({ type: "pin", units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+    if (marks.length) view.send({ type, units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
   }
 
   /** The outline of unit i's box centred on (x, y), with a pin: where it will be pinned. */
