@@ -74,7 +74,8 @@ def test_a_run_with_nothing_changed_returns_the_last_layout_and_shows_its_frame(
     assert len(shown) == 1 and np.array_equal(shown[0], base.frames[-1])
     progress = []
     chart.layout(on_progress=lambda *a: progress.append(a))
-    assert progress == [(base.result.iterations, base.result.stats["loss"], base.result.stats)]
+    assert progress == [(base.result.iterations, base.result.stats["loss"],
+                         {**base.result.stats, "phase": "finish"})]
 
 
 @pytest.mark.parametrize("change", ["value", "dtype", "margin", "seed", "device", "fresh"])
