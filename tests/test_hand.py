@@ -11,6 +11,8 @@ import pytest
 import unitopia_widget as uw
 from unitopia_widget.chart import Chart
 
+from laid import laid_copy
+
 pytestmark = pytest.mark.usefixtures("one_thread")
 
 ELLIPSE = uw.Container.ellipse(200, 150, 185, 135)
@@ -35,10 +37,7 @@ def base():
 @pytest.fixture
 def chart(base):
     """A copy of the laid-out base chart for one test to change (its last run included)."""
-    other = Chart.from_design(base.df, base.design())
-    for name in ("laid", "_units", "_snapshot", "_origin", "_ran"):
-        setattr(other, name, getattr(base, name))   # replaced by each run, never changed in place
-    return other
+    return laid_copy(base)
 
 
 def radius(table):

@@ -8,6 +8,8 @@ import pytest
 import unitopia_widget as uw
 from unitopia_widget.chart import Chart
 
+from laid import laid_copy
+
 pytestmark = pytest.mark.usefixtures("one_thread")
 
 ELLIPSE = uw.Container.ellipse(200, 150, 185, 135)
@@ -28,10 +30,7 @@ def base():
 @pytest.fixture
 def chart(base):
     """A copy of the laid-out base chart for one test to change (its last run included)."""
-    other = Chart.from_design(base.df, base.design())
-    for name in ("laid", "_units", "_snapshot", "_origin", "_ran"):
-        setattr(other, name, getattr(base, name))
-    return other
+    return laid_copy(base)
 
 
 def overlap(table) -> float:
