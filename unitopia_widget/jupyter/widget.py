@@ -25,8 +25,7 @@ from .keep import DesignFile, KeptDesign
 from .drag import LiveDrag
 from .pins import Pinning
 from .notebook import StaticDisplay
-from ..output.publish import axes_image, legend_image
-from ..output.pile_labels import labels as pile_labels
+from .drawn import axes_trait, labels_trait, legend_trait, unit_marks
 from .runner import Runner
 from ..layout.prepare.problem import Cancelled
 
@@ -339,23 +338,8 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
         """After a design change: the legend, pile labels and axes (of the shown layout,
         none once x= and y= are unbound); after a run (``static``) also the
         notebook's static image (rendering it at every edit would slow big charts down)."""
-        try:
-            image = legend_image(self._chart)
-        except Exception:   # a design the legend cannot draw yet: shown without one
-            image = None
-        self._quiet(legend_image={} if image is None else {
-            "src": "data:image/svg+xml;base64," + base64.b64encode(image[0].encode()).decode(),
-            "width": image[1], "height": image[2]})
-        try:
-            labels = pile_labels(self._chart.layers, self._chart.canvas, self._chart.piles)
-        except ValueError:   # a container off the canvas: refused by the next run, no labels
-            labels = []
-        self._quiet(pile_labels=labels)
-        axes = axes_image(self._chart)   # the shown layout's, as its marks are
-        self._quiet(axes_image={} if axes is None else {
-            "src": "data:image/svg+xml;base64," + base64.b64encode(axes[0].encode()).decode(),
-            "x": axes[1][0], "y": axes[1][1],
-            "width": round(axes[1][2] - axes[1][0], 1), "height": round(axes[1][3] - axes[1][1], 1)})
+        self._quiet(legend_image=legend_trait(self._chart), pile_labels=labels_trait(self._chart),
+                    axes_image=axes_trait(self._chart))
         if not static:
             return
         try:
@@ -402,26 +386,14 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
         if units is None:
             return
         layers = self._chart.layers
-        keys, marks, index = {}, [], np.zeros(len(units.rows), dtype=np.float32)
-        for k, (li, mi, color) in enumerate(zip(units.layer, units.mark, units.colors)):
-            key = (int(li), int(mi), color)
-            if key not in keys:
-                keys[key] = len(marks)
-                mark = layers[li].marks[mi]
-                svg = mark.to_svg(color, max_side=128)
-                marks.append({"layer": layers[li].name, "mark": int(mi), "aspect": mark.aspect,
-                              "src": "data:image/svg+xml;base64," + base64.b64encode(svg.encode()).decode()})
-            index[k] = keys[key]
-        table = np.stack([units.layer.astype(np.float32), index,
-                          (2 * units.half_w).astype(np.float32),
-                          (2 * units.half_h).astype(np.float32)], axis=1)
+        marks, table = unit_marks(units, layers)
         names = [layer.name for layer in layers]
         held = {key for key in self._chart._pins}
         with self.hold_sync():
             self.pinned_units = [k for k, (li, row) in enumerate(zip(units.layer, units.rows))
                                  if (names[li], row) in held]
             self.marks = marks
-            self.units = np.ascontiguousarray(table, dtype=np.float32).tobytes()
+            self.units = table.tobytes()
             self.colors = rgba(units.colors).tobytes()
             partial = units.clip is not None and (units.clip < 1).any()
             self.clips = units.clip.astype(np.float32).tobytes() if partial else b""
