@@ -8,6 +8,7 @@ import numpy as np
 
 from .design import piles as pile_mod
 from .design.encodings import footprint
+from .design.sharing import by_container
 
 
 class Piling:
@@ -80,17 +81,10 @@ class Piling:
         hand are kept (``warn``: with a warning saying how to lay them out again)."""
         if self._piles is None or self._units is None:
             return
-        placed = [i for i, layer in enumerate(self.layers) if layer.container is not None]
-        shared: list[list[int]] = []   # layers grouped by the container they share
-        for i in placed:
-            mine = self.layers[i].container
-            group = next((g for g in shared if self.layers[g[0]].container == mine), None)
-            if group is None:
-                shared.append([i])
-            else:
-                group.append(i)
+        shared = by_container(self.layers, pile_mod.has_container)
+        placed = sum(len(g) for g in shared)
         wanted = pile_mod.groups(self.layers)
-        if len(placed) == len(self.layers) and sorted(wanted) == sorted(shared):
+        if placed == len(self.layers) and sorted(wanted) == sorted(shared):
             return
         try:
             untouched = all(self.layers[g[0]].container == rect

@@ -18,6 +18,7 @@ import numpy as np
 
 from .containers import Container
 from .forces import DirectionalForce
+from .sharing import by_container
 from .validate import check_choice
 
 ARRANGEMENTS = ("columns", "rows", "grid")
@@ -67,6 +68,11 @@ def groups(layers) -> list[list[int]]:
     for i in range(len(layers)):
         out.setdefault(find(i), []).append(i)
     return list(out.values())
+
+
+def has_container(layer) -> bool:
+    """Whether ``layer`` has a container of its own (a pile's layers do)."""
+    return layer.container is not None
 
 
 def label_of(names) -> str:
@@ -170,15 +176,7 @@ def label_spots(layers, canvas, arrange: str) -> list[tuple[str, float, float, f
     container), its baseline point, the width it may take (px) and its SVG text-anchor.
     Under the pile's box for columns and grid, left of it (right-aligned) for rows; layers
     without a container have none."""
-    piles: list[tuple[Container, list[str]]] = []
-    for layer in layers:
-        if layer.container is None:
-            continue
-        pile = next((p for p in piles if p[0] == layer.container), None)
-        if pile is None:
-            piles.append((layer.container, [layer.name]))
-        else:
-            pile[1].append(layer.name)
+    piles = [(layers[g[0]].container, [layers[i].name for i in g]) for g in by_container(layers, has_container)]
     boxes = [(x, y, x + bw, y + bh) for x, y, bw, bh in (c.bbox(canvas) for c, _ in piles)]
     w, h = canvas
     out = []

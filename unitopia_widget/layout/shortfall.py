@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 
 from ..design.encodings import footprint
+from ..design.sharing import by_container
 from .prepare.pack import thin
 from .prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, widest_disc, scale_cap
 from .prepare.start import footprint_radius
@@ -22,28 +23,13 @@ CAPPED = 0.8      # a final scale at least this share of a layer's cap (its long
 OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
 
 
-def containers(layers, boundary: str) -> list:
-    """``[[layer index, ...], ...]``: the layers of ``boundary`` grouped by the container they
-    share (regions compare by value)."""
-    groups = []   # [(region, [i])]
-    for i, layer in enumerate(layers):
-        if layer.boundary != boundary:
-            continue
-        group = next((g for region, g in groups if region == layer.region), None)
-        if group is None:
-            groups.append((layer.region, [i]))
-        else:
-            group.append(i)
-    return [g for _, g in groups]
-
-
 def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
     """Warn for each open container whose marks, at their final scales ``unit_scale (N,)``,
     cover under ``SHORT`` of the fill asked of it (its first layer's ``fill=``, else the
     default): the fill it was laid out at, why (the container's widest part against the
     largest mark, the footprints' and margins' share of it, the shrink that cleared the
     overlaps) and what would help."""
-    for members in containers(layers, "open"):
+    for members in by_container(layers, lambda layer: layer.boundary == "open"):
         asked = next((layers[i].fill for i in members if layers[i].fill is not None),
                      DEFAULT_OPEN_FILL)
         mine = np.isin(units.layer, members)
@@ -86,7 +72,7 @@ def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None
     cover under ``EMPTY`` of it because one mark, ``OUTLIER`` times the median or longer,
     holds the scale at its cap: the row, its value in the bound size channels (from ``df``,
     the rows by index label), the sizes drawn, and the ``*_range=`` that would help."""
-    for members in containers(layers, "closed"):
+    for members in by_container(layers, lambda layer: layer.boundary == "closed"):
         if any(layers[i].fill is not None for i in members):
             continue   # a fixed scale: the fill asked for, not a cap
         mine = np.isin(units.layer, members)

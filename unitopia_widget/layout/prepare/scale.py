@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ...design.encodings import footprint
+from ...design.sharing import by_container
 from ...design.units import Units
 from .lattice import Region
 from .pack import STEP, Packing, packable, thin
@@ -77,16 +78,9 @@ def overfilled(layers, scales: str) -> list:
     fill, and nothing is listed."""
     if scales != "independent":
         return []
-    groups = []   # [(region, [layers])]: regions compare by value
-    for layer in layers:
-        if layer.boundary == "open" or layer.fill is not None:
-            group = next((g for region, g in groups if region == layer.region), None)
-            if group is None:
-                groups.append((layer.region, [layer]))
-            else:
-                group.append(layer)
     out = []
-    for _, group in groups:
+    for members in by_container(layers, lambda a: a.boundary == "open" or a.fill is not None):
+        group = [layers[i] for i in members]
         total = sum(layer.fill or DEFAULT_OPEN_FILL for layer in group)
         if len(group) > 1 and total > MAX_COVER:
             out.append(([layer.name for layer in group], total))
