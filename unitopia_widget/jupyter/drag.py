@@ -7,14 +7,15 @@ marks there and starts a warm run, which a pin change answers with the local ref
 and keeps only the newest waiting one: a message arriving while a run goes ends that run once
 it has taken ``DRAG_STEPS`` steps (it keeps its frame so far, the next run starts from it), so
 the latest position wins and no queue builds up. The drop's run is not cut short by anything
-but a new drag: it ends with the usual final layout (status "done", the static image refreshed); the drag's runs skip
-that image.
+but a new drag: it ends with the usual final layout (status "done", the static image
+refreshed); the drag's runs skip that image.
 """
 from __future__ import annotations
 
 import threading
 
 DRAG_STEPS = 4   # steps a drag's run takes before a newer position may end it
+
 
 class LiveDrag:
     """``UnitoPia``'s live drag; needs ``_pin_units``, ``run`` and ``_on_error``; its runs go

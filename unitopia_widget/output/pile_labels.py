@@ -6,7 +6,8 @@ from __future__ import annotations
 from xml.sax.saxutils import escape
 
 from ..design.piles import LABEL_FONT, label_spots
-from .legend_draw import TEXT, text_width
+from .legend_draw import TEXT
+from .text import text_width
 
 CLASS = "pile-label"
 
