@@ -76,9 +76,7 @@ def rebase(base: Problem, units, layers) -> Problem | None:
             or any(layer.emitter is not None for layer in layers)
             or len(base.sprite_sides) != len(units.sprites)):
         return None
-    group = np.zeros(len(layers), int) if base.scale_group is None else np.asarray(base.scale_group)
-    scales = np.array([base.scale] if base.group_scale is None else base.group_scale, dtype=float)
-    unit_scale = scales[group[units.layer]]
+    unit_scale = base.group_scales()[base.layer_groups()[units.layer]]
     band = footprint(units.margin)
     terms = dataclasses.replace(
         base.terms, norm=float((units.area * band ** 2 * unit_scale ** 2).sum()) * base.grid.rho ** 2,
@@ -128,7 +126,7 @@ def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_a
     angle = np.degrees(p.placement.theta.detach().cpu().numpy().astype(np.float64))
     if on_frame is not None:   # the layout, the last frame as of every run
         on_frame(np.column_stack([center, angle, scale]).astype(np.float32))
-    return Result(center=center, angle=angle, scale=float(unit_scale_of_group(p, 0)),
+    return Result(center=center, angle=angle, scale=float(p.group_scales()[0]),
                   iterations=iterations, seconds=time.perf_counter() - started,
                   cancelled=cancelled, stats=stats, unit_scale=scale,
                   phases={"reflow": iterations}, rules=("reflow",))
@@ -140,8 +138,7 @@ def shrunk(p: Problem, units, layers, previous, area: np.ndarray, room: float) -
     smaller): its scale would grow into the room left. ``area (N,)``: each unit's footprint
     area now, px^2."""
     names = [layer.name for layer in layers]
-    group = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
-    free = np.array([p.free_scale] if p.group_free is None else p.group_free, dtype=bool)
+    group, free = p.layer_groups(), p.group_controlled()
     known = previous["layer"].isin(names).to_numpy()
     old_group = np.full(len(previous), -1)
     old_group[known] = group[[names.index(n) for n in previous["layer"][known]]]
@@ -167,12 +164,7 @@ def step_aside(center: np.ndarray, radius: np.ndarray, movable: np.ndarray,
 
 def unit_scales(p: Problem) -> np.ndarray:
     """``(N,)`` each unit's global scale in ``p``."""
-    group = np.zeros(p.terms.penalty.shape[0], int) if p.scale_group is None else np.asarray(p.scale_group)
-    return np.array([unit_scale_of_group(p, g) for g in group[p.layer]], dtype=np.float64)
-
-
-def unit_scale_of_group(p: Problem, g: int) -> float:
-    return float(p.scale if p.group_scale is None else p.group_scale[g])
+    return p.group_scales()[p.layer_groups()[p.layer]]
 
 
 @dataclass(frozen=True)

@@ -55,7 +55,7 @@ def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
         return problem
     p, terms = problem, problem.terms
     n_layers = terms.penalty.shape[0]
-    group = np.zeros(n_layers, int) if p.scale_group is None else np.asarray(p.scale_group)
+    group = p.layer_groups()
     keys = [repr(layer.region.to_json()) for layer in layers]
     layer = np.array(p.layer, copy=True)
     slabs = {}   # (container key, scale group) -> (slab index, a layer of that container)
@@ -102,9 +102,7 @@ def pin_problem(problem, units, layers, canvas, idx: np.ndarray, xy: np.ndarray,
 def _vacate(p, units, layers, canvas, keys, center: np.ndarray, idx: np.ndarray) -> None:
     """Move (in ``center (N, 2)``) the free units whose start sits on a pin ``idx`` of their
     container (their centres closer than the larger footprint radius) into free room."""
-    group = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
-    scales = np.array([p.scale] if p.group_scale is None else p.group_scale, dtype=float)
-    radius = footprint_radius(units) * scales[group[units.layer]]
+    radius = footprint_radius(units) * p.group_scales()[p.layer_groups()[units.layer]]
     unit_key = np.array([keys[li] for li in units.layer], dtype=object)
     pinned = np.isin(np.arange(len(center)), idx)
     free = p.placement.movable.cpu().numpy() & ~pinned

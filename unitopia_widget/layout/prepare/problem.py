@@ -43,6 +43,18 @@ class Problem:
     device: str = "cpu"
     regions: tuple = ()            # per layer: its allowed region (a design Container), for contacts.clear
 
+    def layer_groups(self) -> np.ndarray:
+        """``(L,)`` each layer's scale group (all 0 under one shared scale)."""
+        return np.zeros(len(self.forces), int) if self.scale_group is None else np.asarray(self.scale_group)
+
+    def group_scales(self) -> np.ndarray:
+        """``(G,)`` float: each scale group's initial scale."""
+        return np.array([self.scale] if self.group_scale is None else self.group_scale, dtype=float)
+
+    def group_controlled(self) -> np.ndarray:
+        """``(G,)`` bool: the scale groups whose scale the fill controls."""
+        return np.array([self.free_scale] if self.group_free is None else self.group_free, dtype=bool)
+
 
 class Cancelled(Exception):
     """A layout stopped before it had a step to keep."""

@@ -76,9 +76,7 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
     if not kept.any():
         return problem
     old = previous.iloc[found[kept]]
-    group_of = np.zeros(len(layers), int) if p.scale_group is None else np.asarray(p.scale_group)
-    group_scale = np.array([p.scale] if p.group_scale is None else p.group_scale, dtype=float)
-    free = np.array([p.free_scale] if p.group_free is None else p.group_free, dtype=bool)
+    group_of, group_scale, free = p.layer_groups(), p.group_scales(), p.group_controlled()
     unit_group = group_of[units.layer]
     foot = units.area * footprint(units.margin) ** 2
     old_group = group_of[[names.index(n) if n in names else 0 for n in previous["layer"]]]
