@@ -18,7 +18,7 @@ import numpy as np
 
 from .legend import date_ticks, round_values, spaced_ticks
 from .legend_draw import TEXT
-from .text import text_width
+from .text import fit, text_width
 
 FONT = 11          # px, tick labels
 GAP = 6            # px between the marks (or the container's edge) and the axis line
@@ -61,7 +61,7 @@ def ticks(axis) -> list[tuple[float, str]]:
     if scale.kind == "band":
         count = len(scale.domain)
         room = length / count - 2 * TICK   # a label stays within its band on an x axis
-        return [((k + 0.5) / count, fit(str(v), room) if axis.channel == "x" else _clip(str(v)))
+        return [((k + 0.5) / count, fit(str(v), room, FONT) if axis.channel == "x" else _clip(str(v)))
                 for k, v in enumerate(scale.domain)]
     lo, hi = scale.domain
     if scale.kind == "log":
@@ -93,15 +93,6 @@ def _decades(lo: float, hi: float) -> list[float]:
 
 def _clip(text: str) -> str:
     return text if len(text) <= MAX_LABEL else text[:MAX_LABEL - 1] + "…"
-
-
-def fit(text: str, room: float, size: float = FONT) -> str:
-    """``text`` cut with an ellipsis to at most ``room`` px wide at ``size`` px."""
-    if text_width(text, size) <= room:
-        return text
-    while text and text_width(text + "…", size) > room:
-        text = text[:-1]
-    return text + "…"
 
 
 def _n(v: float) -> str:

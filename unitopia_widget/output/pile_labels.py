@@ -7,7 +7,7 @@ from xml.sax.saxutils import escape
 
 from ..design.piles import LABEL_FONT, label_spots
 from .legend_draw import TEXT
-from .text import text_width
+from .text import fit
 
 CLASS = "pile-label"
 
@@ -17,17 +17,8 @@ def labels(layers, canvas, arrange) -> list[dict]:
     text-anchor); none when ``arrange`` is None."""
     if arrange is None:
         return []
-    return [{"text": fit(text, room), "x": round(x, 1), "y": round(y, 1), "anchor": anchor}
+    return [{"text": fit(text, room, LABEL_FONT), "x": round(x, 1), "y": round(y, 1), "anchor": anchor}
             for text, x, y, room, anchor in label_spots(layers, canvas, arrange)]
-
-
-def fit(text: str, room: float) -> str:
-    """``text``, cut and ended with an ellipsis where it is wider than ``room`` px."""
-    if text_width(text, LABEL_FONT) <= room:
-        return text
-    while text and text_width(text + "…", LABEL_FONT) > room:
-        text = text[:-1]
-    return text.rstrip() + "…"
 
 
 def labels_svg(layers, canvas, arrange) -> str:

@@ -32,3 +32,13 @@ def text_width(text: str, size: float = 12.0, bold: bool = False) -> float:
         else:
             em += 1.0 if unicodedata.east_asian_width(ch) in "WF" else CHAR_W
     return em * size * (BOLD if bold else 1.0)
+
+
+def fit(text: str, room: float, size: float = 12.0) -> str:
+    """``text``, cut and ended with an ellipsis where it is wider than ``room`` px at font
+    ``size`` px (no space left before the ellipsis)."""
+    if text_width(text, size) <= room:
+        return text
+    while text and text_width(text + "…", size) > room:
+        text = text[:-1]
+    return text.rstrip() + "…"
