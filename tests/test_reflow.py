@@ -63,14 +63,27 @@ def test_a_moved_pin_moves_only_the_marks_around_it(chart, base, k):
     assert after.width.to_numpy() == pytest.approx(before.width.to_numpy()), "the scale kept"
 
 
-def test_added_rows_reflow_around_them_and_removed_ones_run_the_full_layout(chart, base):
+def test_added_rows_reflow_around_them(chart, base):
     chart.set_data(pd.concat([base.df, data(3, start=300)]))
     added = chart.layout()
     assert len(added) == 303 and overlap(added) < 0.01
     assert chart.result.stats["outside"] < 0.005
-    chart.set_data(base.df.iloc[10:])
-    chart.layout()
-    assert "reflow" not in chart.result.phases, "a closed container fills the room again"
+
+
+@pytest.mark.parametrize("change", ["add", "remove"])
+def test_rows_added_to_or_removed_from_a_filled_container_reflow_at_the_area_ratio(chart, base, change):
+    """5% more or fewer rows: every mark shrinks or grows by the area ratio, moved along the
+    room the change makes or leaves (``prepare.room``), still legal: the reflow answers."""
+    before = base.placements
+    df = pd.concat([base.df, data(15, start=300)]) if change == "add" else base.df.iloc[15:]
+    chart.set_data(df)
+    after = chart.layout()
+    assert set(chart.result.phases) == {"reflow"}, "the reflow answered"
+    area = float((np.pi * (after.width / 2) ** 2).sum())
+    assert area == pytest.approx(float((np.pi * (before.width / 2) ** 2).sum()), rel=0.01), \
+        "the marks fill the container as before"
+    assert overlap(after) < 0.005 and chart.result.stats["overlap"] < 0.005
+    assert chart.result.stats["outside"] < 0.005
 
 
 def test_margins_reflow_and_another_container_runs_the_full_layout(chart, base):

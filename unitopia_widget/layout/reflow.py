@@ -6,7 +6,13 @@ fields, the sprite pyramids and the blocks, made from the layers, the canvas and
 resolution only) and gives each unit its arrays anew (``rebase``). It starts from the last
 layout as any warm run does (``prepare.warm``, ``prepare.pins``), with the scale kept
 (``warm`` shrinks it only where added rows need the room), and then moves only the marks
-the change reaches (``settle``): a unit is *crowded* when its overlapped or outside share
+the change reaches (``settle``, on a ``window.Window``). Where rows were added to or
+removed from a container whose scale the fill controls (and no kept mark changed size),
+every mark there must move: its scale follows the footprint area ratio and
+``prepare.room.make_room`` moves the marks along the room the change makes or leaves and
+relaxes their discs, which leaves the layout near legal; the window then starts from there
+with every mark movable, with small steps, and judges the overlap the change added net of
+the overlap it removed. A unit is *crowded* when its overlapped or outside share
 of its ink grew by more than ``ReflowSettings.crowded`` over the last layout; crowded units
 are *active* (they move), every unit with ink in the raster box around the active ones is
 drawn, the others frozen as obstacles, and a frozen unit that becomes crowded joins the
@@ -15,8 +21,9 @@ The run stops as soon as the layout is legal again: the overlap the change added
 ``final_overlap`` of all the marks' area, and no unit's share grew by more than ``worst``. A
 change that reaches too far (``spread``), or one the window cannot absorb in
 ``max_iterations``, is answered by the full warm run instead (``reflow`` returns None); so
-are removed rows in a container whose scale grows into their room, design changes beyond
-pins (a margin, a force), emitters, curve tracks and x=/y= positions, which no window answers.
+are marks made smaller in a container whose scale grows into their room, design changes
+beyond pins and margins (a force), emitters, curve tracks and x=/y= positions, which no
+window answers.
 """
 from __future__ import annotations
 
@@ -32,13 +39,12 @@ from .prepare.assemble import room_reach
 from .prepare.pins import pin_problem
 from .prepare.problem import Problem
 from .prepare.start import footprint_radius
-from .prepare.warm import warm_problem
+from .prepare.room import make_room, regrown
+from .prepare.warm import replace_start, warm_problem
 from .rules import STEPS
 from .solver import Result
-from .step.losses import CanvasLoss, shares
-from .step.optim import Adam
 from .step.placement import Placement
-from .step.raster import Planner, render_samples
+from .window import Window, bounds, final_stats, inside
 
 
 @dataclass(frozen=True)
@@ -60,6 +66,9 @@ class ReflowSettings:
     room: float = 0.02           # share of a controlled scale group's footprint area its marks may
     #                              give up (as a warm start's scale does) before the scale must grow
     slack: float = 2.0           # largest footprint radii the raster box reaches past the drawn units
+    net: bool = False            # the grown overlap of all units summed with its falls (a change
+    #                              that moves every mark, where the falls are as real as the growths)
+    moved_gain: float = 1.0      # ``gain`` where every mark moved to a start near legal (``make_room``)
 
 
 SETTINGS = ReflowSettings()
@@ -106,10 +115,17 @@ def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_a
     kept = found >= 0
     if not kept.any():
         return None
-    p = warm_problem(p, units, layers, canvas, previous, pinned, pin_xy)
+    groups = regrown(p, units, layers, previous, found)
+    placed = np.isin(p.layer_groups()[units.layer], list(groups))
+    p = warm_problem(p, units, layers, canvas, previous, pinned, pin_xy, placed=placed)
+    if groups:   # rows added to or removed from a filled container: all its marks move
+        center, scales = make_room(p, units, layers, canvas, previous, found, pinned, groups)
+        p = dataclasses.replace(p, placement=replace_start(p.placement, center),
+                                group_scale=scales, scale=float(scales[0]))
+        settings = dataclasses.replace(settings, spread=1.0, net=True, gain=settings.moved_gain)
     scale = unit_scales(p)
     area = units.area * footprint(units.margin) ** 2 * scale ** 2
-    if shrunk(p, units, layers, previous, area, settings.room):
+    if not groups and shrunk(p, units, layers, previous, area, settings.room):
         return None   # a controlled scale grows into the room the change left: all marks move
     p = pin_problem(p, units, layers, canvas, pinned, pin_xy, pin_angle, vacate=False)
     center = p.placement.t.detach().cpu().numpy().astype(np.float64)
@@ -119,7 +135,12 @@ def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_a
     grew = np.ones(len(found), bool)   # added units, and kept ones moved or grown
     grew[kept] = (np.hypot(*(center[kept] - old[kept]).T) > 1e-6) \
         | (area[kept] > previous["area"].to_numpy(dtype=float)[found[kept]] * (1 + 1e-6))
-    moved = settle(p, center, old, grew, settings, on_frame, cancel)
+    was = None
+    if groups:   # each unit's scale in the last layout, where the scale changed
+        was = scale.copy()
+        was[kept] = np.sqrt(previous["area"].to_numpy(dtype=float)[found[kept]]
+                            / (units.area * footprint(units.margin) ** 2)[kept])
+    moved = settle(p, center, old, grew, settings, on_frame, cancel, was)
     if moved is None:
         return None
     center, iterations, cancelled, stats = moved
@@ -167,115 +188,13 @@ def unit_scales(p: Problem) -> np.ndarray:
     return p.group_scales()[p.layer_groups()[p.layer]]
 
 
-@dataclass(frozen=True)
-class Crop:
-    """A box of a ``RasterGrid``'s pixels, drawn on as a grid of its own: ``offset`` (x, y)
-    canvas px moves a centre from the full grid onto the crop (``render_samples`` reads
-    ``rho``, ``pad`` and ``shape``)."""
-
-    rho: float
-    pad: int
-    shape: tuple       # (H, W) raster px of the crop
-    corner: tuple      # (row, column) of the crop's first pixel in the full raster
-
-    @property
-    def offset(self) -> np.ndarray:
-        return np.array([self.corner[1], self.corner[0]], dtype=float) / self.rho
-
-
-class Window:
-    """The drawn units ``sub (K,)`` of ``p``, the active ones free to move: a placement,
-    its optimizer, its render plan and terms (fill weight ``w_fill``), on the raster box
-    around them (``box``: canvas px ``(x0, y0, x1, y1)``; None: the whole raster, as where a
-    layer rests on another's swept shadow)."""
-
-    def __init__(self, p: Problem, sub: np.ndarray, center: np.ndarray, active: np.ndarray,
-                 foot_w: np.ndarray, foot_h: np.ndarray, lr: float, w_fill: float = 0.0,
-                 box=None):
-        dev = torch.device(p.device)
-        self.sub, self.box = sub, box
-        grid, terms = p.grid, p.terms
-        self.offset = np.zeros(2)
-        if box is not None:
-            h, w = grid.shape
-            c0, r0 = (max(int(np.floor(v * grid.rho)), 0) for v in box[:2])
-            c1, r1 = min(int(np.ceil(box[2] * grid.rho)) + 2 * grid.pad, w), \
-                min(int(np.ceil(box[3] * grid.rho)) + 2 * grid.pad, h)
-            grid = Crop(grid.rho, grid.pad, (r1 - r0, c1 - c0), (r0, c0))
-            n_layers = terms.penalty.shape[0]
-
-            def cut(field):
-                return field.view(n_layers, h, w)[:, r0:r1, c0:c1].reshape(n_layers, -1).contiguous()
-
-            terms = dataclasses.replace(terms, penalty=cut(terms.penalty), outside=cut(terms.outside),
-                                        inside=cut(terms.inside), shape=grid.shape)
-            self.offset = grid.offset
-        self.terms = dataclasses.replace(terms, w_fill=w_fill, sums=None, _cover=None,
-                                         _tables=None, _rows=None, _onehot=None, _obstacle=None)
-        theta = p.placement.theta.detach().cpu().numpy()[sub]
-        self.place = Placement(center[sub] - self.offset, theta, active[sub],
-                               np.zeros(len(sub), bool), dev)
-        self.optimizer = Adam([{"params": [self.place.t], "lr": lr}], betas=(0.8, 0.95))
-        rotating = np.abs(theta) > 1e-6
-        planner = Planner(p.sprite[sub], p.sprite_sides, rotating, p.pyramids, grid, dev,
-                          p.sprite_aspects)
-        self.plan = planner.plan_for(foot_w[sub], foot_h[sub])
-        self.layer = torch.as_tensor(p.layer[sub], device=dev, dtype=torch.long)
-        self.sample_layer = self.layer[self.plan.owner] if self.terms.penalty.shape[0] > 1 else None
-        self.hw = torch.as_tensor(foot_w[sub], device=dev, dtype=torch.float32)
-        self.hh = torch.as_tensor(foot_h[sub], device=dev, dtype=torch.float32)
-        self.grid, self.pyramids = grid, p.pyramids
-        self.full = torch.as_tensor(p.grid.canvas, dtype=torch.float32)
-        # (K,) the drawn units whose footprint lies wholly in the box: their shares are whole
-        radius = np.hypot(foot_w[sub], foot_h[sub])[:, None]
-        self.whole = np.ones(len(sub), bool) if box is None else \
-            ((center[sub] - radius >= box[:2]) & (center[sub] + radius <= box[2:])).all(1)
-
-    def centers(self) -> np.ndarray:
-        """``(K, 2)`` the drawn units' centres, canvas px of the full grid."""
-        return self.place.t.detach().cpu().numpy().astype(np.float64) + self.offset
-
-    def render(self, center=None):
-        center = self.place.transforms()[0] if center is None else center
-        return render_samples(center, self.place.theta, self.hw, self.hh, self.plan,
-                              self.pyramids, self.grid)
-
-    def step(self, lr: float, ink: torch.Tensor) -> None:
-        values, index, _ = self.render()
-        loss = CanvasLoss.apply(values, index, self.sample_layer, self.terms)
-        self.optimizer.param_groups[0]["lr"] = lr
-        self.optimizer.zero_grad()
-        loss.backward()
-        self.optimizer.step()
-        with torch.no_grad():   # on the full canvas, with all their ink
-            off = torch.as_tensor(self.offset, dtype=torch.float32)
-            low = torch.minimum(ink, self.full / 2)
-            self.place.t.copy_(torch.minimum(torch.maximum(self.place.t + off, low),
-                                             self.full - low) - off)
-
-    @torch.no_grad()
-    def shares(self, center=None) -> tuple[np.ndarray, np.ndarray]:
-        """``(K,)`` each drawn unit's overlapped plus outside share of its ink, and ``(K,)``
-        its ink (raster px^2 of alpha), at ``center`` (full-grid canvas px; None: where they
-        are)."""
-        if center is not None:
-            center = torch.as_tensor(center - self.offset, dtype=torch.float32)
-        values, index, owner = self.render(center)
-        t = self.terms
-        over = t.unit_overlap(values, index, owner, self.layer, len(self.sub))
-        size = t.penalty.shape[1]
-        outside = t.outside.reshape(-1).index_select(0, index.long() + self.layer[owner] * size)
-        out = torch.zeros_like(over).index_add_(0, owner, values * outside)
-        drawn = torch.zeros_like(over).index_add_(0, owner, values)
-        return ((over + out) / drawn.clamp_min(1e-6)).cpu().numpy(), drawn.cpu().numpy()
-
-
 def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
-           settings: ReflowSettings, on_frame, cancel):
+           settings: ReflowSettings, on_frame, cancel, was_scale: np.ndarray | None = None):
     """Move the units of ``p`` from ``center (N, 2)`` (the warm start) that the change
     reaches until none is crowded (module docstring); ``old (N, 2)``: each unit's centre in
     the last layout (NaN for added units); ``grew (N,)``: the units added, moved or grown
-    since (only around them can a share have grown). Returns ``(center (N, 2), iterations,
+    since (only around them can a share have grown); ``was_scale (N,)``: each unit's scale in
+    the last layout (None: as now). Returns ``(center (N, 2), iterations,
     cancelled, stats)``, or None when the window spreads past ``settings.spread`` or does
     not settle in ``max_iterations``."""
     n = len(p.layer)
@@ -296,7 +215,10 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
         look = Window(p, sub, center, np.zeros(n, bool), foot_w, foot_h, 0.0, 0.0,
                       box if cropped else None)
         whole = sub[look.whole]
-        before[whole] = look.shares(was[sub])[0][look.whole] * ~np.isnan(old[whole, 0])
+        then = look if was_scale is None else Window(
+            p, sub, center, np.zeros(n, bool), foot_w * was_scale / scale,
+            foot_h * was_scale / scale, 0.0, 0.0, box if cropped else None)
+        before[whole] = then.shares(was[sub])[0][look.whole] * ~np.isnan(old[whole, 0])
         now, ink = look.shares()
         share[whole], ink_area[whole] = now[look.whole], ink[look.whole]
     allowed = settings.final_overlap * p.terms.norm
@@ -307,7 +229,7 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
     iterations, window, box, cancelled = 0, None, None, False
     least, stall = np.inf, 0   # the least worst growth so far, and the rounds since it fell
     while grown.max(initial=0.0) > settings.worst or \
-            float((np.maximum(grown, 0) * ink_area).sum()) > allowed:
+            float(((grown if settings.net else np.maximum(grown, 0)) * ink_area).sum()) > allowed:
         if active.sum() > settings.spread * n or iterations >= settings.max_iterations:
             return None
         if cancel is not None and cancel():
@@ -344,25 +266,3 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
             stall = 0
     everyone = Window(p, np.arange(n), center, np.zeros(n, bool), foot_w, foot_h, 0.0)
     return center, iterations, cancelled, final_stats(everyone, center, p.terms.w_fill)
-
-
-def bounds(center: np.ndarray, radius: np.ndarray, slack: float) -> np.ndarray:
-    """``(4,)`` canvas px ``(x0, y0, x1, y1)``: the box of the discs ``center (K, 2)``,
-    ``radius (K,)``, widened by ``slack`` on every side."""
-    return np.concatenate([(center - radius[:, None]).min(0) - slack,
-                           (center + radius[:, None]).max(0) + slack])
-
-
-def inside(center: np.ndarray, radius: np.ndarray, box: np.ndarray) -> np.ndarray:
-    """``(N,)`` bool: the discs with some part in ``box``."""
-    return ((center + radius[:, None] > box[:2]) & (center - radius[:, None] < box[2:])).all(1)
-
-
-def final_stats(window: Window, center: np.ndarray, w_fill: float) -> dict:
-    """The overlap, outside and fill shares and the loss (``w_fill`` its fill weight) of
-    the units of ``window`` at ``center``."""
-    with torch.no_grad():
-        values, index, _ = window.render(torch.as_tensor(center, dtype=torch.float32))
-        terms = dataclasses.replace(window.terms, w_fill=w_fill)
-        loss = CanvasLoss.apply(values, index, window.sample_layer, terms)
-        return dict(shares(terms.sums.sum(1).tolist(), terms.inside_total), loss=float(loss))

@@ -61,9 +61,10 @@ def unit_keys(layers, rows) -> list:
 
 
 def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
-                 pinned: np.ndarray, pin_xy: np.ndarray):
+                 pinned: np.ndarray, pin_xy: np.ndarray, placed: np.ndarray | None = None):
     """``problem`` started from the snapshot ``previous``; ``pinned (P,)`` unit indices held
-    at ``pin_xy (P, 2)`` count as taken room for the added marks."""
+    at ``pin_xy (P, 2)`` count as taken room for the added marks; ``placed (N,)`` bool: the
+    units whose room the caller makes (``room.make_room``), added ones left where they are."""
     p = problem
     names = [layer.name for layer in layers]
     where = {key: k for k, key in enumerate(unit_keys(previous["layer"], previous["row"]))}
@@ -115,6 +116,8 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
         inside = unit_key == key
         added = inside & ~kept & ~is_pinned & ~still & np.array([layers[li].emitter is None
                                                                  for li in units.layer])
+        if placed is not None:
+            added &= ~placed
         if added.any():
             taken = inside & (kept | is_pinned)
             center[added] = free_room(region, center, radius, taken, added)
