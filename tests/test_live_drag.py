@@ -13,6 +13,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.jupyter.drag import DRAG_STEPS
+from unitopia_widget.layout import engine
 
 CENTRE = (200.0, 150.0)
 
@@ -122,3 +123,65 @@ def test_a_drag_outside_the_container_is_reported_and_the_drag_goes_on(laid):
     drag(w, *moves[-1], kind="pin")
     wait_idle(w)
     assert w.status == "done" and not w.error
+
+
+def pulling(df):
+    """A widget of ``df`` in an open container, pulled by a point force left of its centre."""
+    return uw.UnitoPia(df, size="v", container=uw.Container.ellipse(*CENTRE, 120, 120),
+                       canvas=(400, 300), device="cpu", boundary="open", fill=0.15,
+                       forces=[uw.PointForce(160.0, 150.0)])
+
+
+@pytest.fixture(scope="module")
+def pulled():
+    w = pulling(pd.DataFrame({"v": np.random.default_rng(1).uniform(1.0, 10.0, 150)}))
+    w.run(wait=True)
+    return w
+
+
+def near(table, at) -> float:
+    """The marks' median distance to ``at``, px."""
+    return float(np.median(np.hypot(table.x - at[0], table.y - at[1])))
+
+
+def force(w, x, y, final=False):
+    w._on_message(w, {"type": "force", "layer": 0, "index": 0, "x": round(x, 2), "y": round(y, 2),
+                      "final": final}, [])
+
+
+def test_dragging_a_point_force_reflows_every_mark_while_it_moves_and_the_drop_lays_out(pulled, monkeypatch):
+    w = pulling(pulled.df)
+    chart = w._chart
+    for name in ("laid", "_snapshot", "_origin", "_ran"):
+        setattr(chart, name, getattr(pulled._chart, name))
+    w._laid_out, w.frame, w.status = pulled._laid_out, pulled.frame, "done"
+    built = []
+    real = engine.build_problem
+    monkeypatch.setattr(engine, "build_problem", lambda *a, **k: built.append(1) or real(*a, **k))
+    frames = []
+    w.observe(lambda c: frames.append(frame_of(w).copy()), "frame")
+    before = near(pulled.placements, (232.0, 150.0))
+    moves = [(160.0 + 6 * k, 150.0) for k in range(1, 13)]
+    for x, y in moves:                 # a pointer move every 100 ms, the widget's throttle
+        force(w, x, y)
+        time.sleep(0.1)
+    during = list(frames)
+    force(w, *moves[-1], final=True)
+    wait_idle(w)
+    assert not w.error
+    moving = [k for k in range(1, len(during))
+              if np.abs(during[k][:, :2] - during[k - 1][:, :2]).max() > 0.01]
+    assert len(moving) >= 5, f"only {len(moving)} streamed frames moved the marks"
+    assert w.status == "done" and not w.stale and not chart.result.cancelled, \
+        "the drop ends with the final layout"
+    assert w.layers[0].forces[0] == uw.PointForce(*moves[-1])
+    assert w.design["layers"][0]["forces"][0]["x"] == pytest.approx(moves[-1][0])
+    assert near(w.placements, moves[-1]) < before - 15, "the marks followed the force"
+    assert built == [], "each run reused the last problem: no fields or sprites made again"
+
+
+def test_a_force_message_for_no_point_force_is_reported(pulled):
+    w = pulling(pulled.df)
+    w._on_message(w, {"type": "force", "layer": 0, "index": 3, "x": 1.0, "y": 2.0}, [])
+    wait_idle(w)
+    assert "index must be the index of a point force of layer" in w.error

@@ -99,3 +99,17 @@ def test_margins_reflow_and_another_container_runs_the_full_layout(chart, base):
     chart.layer(0).set(container=uw.Container.ellipse(200, 150, 190, 140))
     chart.layout()
     assert "reflow" not in chart.result.phases
+
+
+def test_a_run_from_a_full_run_cut_short_solves_in_full():
+    """A newer drag message cuts a full run short and the next run starts from its marks,
+    still on their way (``start_from_last``): with nothing else changed, it goes on solving
+    in full, on the last run's problem."""
+    chart = Chart(data(100), size="v", container=ELLIPSE, canvas=(400, 300))
+    steps = []
+    chart.layout(cancel=lambda: len(steps) > 5, on_progress=lambda *a: steps.append(1))
+    assert chart.result.cancelled and "settle" in chart.result.phases
+    chart.start_from_last()
+    chart.layout()
+    assert "reflow" not in chart.result.phases and not chart.result.cancelled
+    assert chart.result.iterations > 20 and chart.result.stats["overlap"] < 0.005

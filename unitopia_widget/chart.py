@@ -284,7 +284,7 @@ class Chart(Piling, HandControl):
             self._units, self.layers, self.canvas, seed=self.seed, device=self.device,
             on_frame=on_frame, cancel=cancel, on_progress=on_progress, frame_every=frame_every,
             scales=self.scales, abort=abort, pins=list(self._pins.values()), previous=origin,
-            reuse=self._reusable(origin, inputs))
+            reuse=self._reusable(origin, inputs), settled=self._settled())
         self.laid = laid
         self._remember_run(origin, inputs, laid.units, laid.result)
         if not laid.result.cancelled:

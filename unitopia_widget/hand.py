@@ -177,9 +177,10 @@ class HandControl:
 
     def _reusable(self, origin, inputs):
         """The last run's ``Layout.problem`` when this run starts warm from its layout and
-        only the pins, the rows or the margins changed since (the design otherwise equal, the
-        same device, the same marks in the same order): a reflow reuses it (its raster, fields
-        and sprites depend on none of these; ``layout.reflow``); else None."""
+        only the pins, the rows, the margins or point forces' places changed since (the design
+        otherwise equal, the same device, the same marks in the same order): a reflow reuses
+        it (its raster, fields and sprites depend on none of these; ``layout.reflow``); else
+        None."""
         ran = self._ran
         if origin is None or origin is not self._snapshot or self.laid is None \
                 or ran is None or ran[2] != inputs[2]:
@@ -188,15 +189,29 @@ class HandControl:
         same_design = _reflowable(ran[0]) == _reflowable(inputs[0])
         return self.laid.problem if same_marks and same_design else None
 
+    def _settled(self) -> bool:
+        """Whether the last run's layout is one a reflow may start from: not a full run cut
+        short after its first steps (a Stop, a newer drag message), whose marks are still on
+        their way. (A full run a drag message cut before its first step, as one where the
+        reflow gave up, left its start: the last layout, with the pins moved.)"""
+        result = None if self.laid is None else self.laid.result
+        return result is None or not result.cancelled or "reflow" in result.phases \
+            or result.iterations == 0
+
     def _remember_run(self, origin, inputs, units, result) -> None:
         self._origin, self._ran = origin, (inputs[0], inputs[1].copy(), inputs[2])
         self._snapshot = snapshot(units, self.layers, result)
 
 
 def _reflowable(text: str) -> dict:
-    """The design JSON ``text`` without what a reflow answers: its pins and margins."""
+    """The design JSON ``text`` without what a run may answer from the last run's problem:
+    its pins, margins and point forces' places (``layout.engine.layout``'s ``reuse``)."""
     design = json.loads(text)
     design.pop("pins", None)
     for layer in design.get("layers", []):
         layer.get("encodings", {}).pop("margin", None)
+        for force in layer.get("forces", []):
+            if force.get("kind") == "point":
+                force.pop("x", None)
+                force.pop("y", None)
     return design

@@ -427,6 +427,9 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
             self.dismiss_error()
         elif kind in ("drag", "pin"):   # live drag (drag.py): pin, reflow; "pin" is the drop
             self._drag(msg.get("units"), msg.get("x"), msg.get("y"), final=kind == "pin")
+        elif kind == "force":   # a point force dragged (drag.py): move it, lay out warm
+            self._drag_force(msg.get("layer"), msg.get("index"), msg.get("x"), msg.get("y"),
+                             final=bool(msg.get("final")))
 
     def _safe(self, fn):
         def call():

@@ -18,7 +18,7 @@ from .prepare.pins import pin_problem, pinned_units
 from .prepare.problem import Cancelled
 from .prepare.scale import initial_scale
 from .prepare.warm import warm_problem
-from .reflow import reflow
+from .reflow import reflow, resumed
 from .solver import Result, solve
 from .step.heap import held
 
@@ -83,7 +83,7 @@ def placements(units: Units, layers, result: Result) -> pd.DataFrame:
 
 def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, cancel=None,
            on_progress=None, frame_every: int = 3, scales: str = "shared", abort=None,
-           pins=(), previous=None, reuse=None) -> Layout:
+           pins=(), previous=None, reuse=None, settled: bool = True) -> Layout:
     """Build and solve the layout of ``units`` (``prepare.bind.bind(df, layers)``). Returns
     its ``Layout``.
 
@@ -93,9 +93,12 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
     start (a fresh, unpinned run shows it before the fields are made), a Stop keeps the
     start as the layout. ``pins``: ``design.pins.Pin``s held in place (``layout.pins``);
     ``previous``: a ``warm.snapshot`` to start from (None: a fresh start); ``reuse``: the
-    last run's ``Layout.problem`` where only pins and rows changed since (its layers, canvas,
-    seed, scales and device are these): a warm run then moves only the marks the change
-    reaches, where it can (``reflow``)."""
+    last run's ``Layout.problem`` where only pins, rows, margins and point forces' places
+    changed since (its layers, canvas, seed, scales and device are these): a warm run then
+    moves only the marks the change reaches, where it can (``reflow``); after a moved force
+    the full warm run reuses it (``reflow.resumed``), with no problem built. ``settled``
+    False: ``previous`` is a full run cut short (a Stop, a newer drag message), which only
+    the full warm run settles (on ``reuse``, where given)."""
     check_abort(abort)
     kept = Frames()
 
@@ -105,6 +108,10 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
             on_frame(frame, *final)
 
     pinned, pin_xy, pin_angle = pinned_units(units, layers, pins)
+    reforced = None   # the last problem, which the full warm run reuses
+    if previous is not None and reuse is not None and \
+            (not settled or [layer.forces for layer in layers] != list(reuse.forces)):
+        reforced, reuse = resumed(reuse, units, layers), None
     if previous is not None and reuse is not None:
         with held():
             result = reflow(reuse, units, layers, canvas, previous, pinned, pin_xy, pin_angle,
@@ -118,8 +125,9 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
     # a fresh, unpinned start is the solver's start: it is shown before the fields are made
     early = record if previous is None and len(pinned) == 0 else None
     with held():   # the iterations' scratch tensors reuse the heap, not fresh pages
-        problem = base = build_problem(units, layers, canvas, seed, pick_device(device),
-                                       scales=scales, abort=abort, on_start=early)
+        problem = base = reforced if reforced is not None else build_problem(
+            units, layers, canvas, seed, pick_device(device), scales=scales, abort=abort,
+            on_start=early)
         if previous is not None:
             problem = warm_problem(problem, units, layers, canvas, previous, pinned, pin_xy)
         problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)

@@ -99,6 +99,19 @@ def rebase(base: Problem, units, layers) -> Problem | None:
         disc=footprint_radius(units), ink_share=units.ink_share, stage=None, travelling=False)
 
 
+def resumed(base: Problem, units, layers) -> Problem | None:
+    """``base`` (the last run's problem) ``rebase``d for ``units`` with the forces of
+    ``layers``, for a full warm run that needs no new problem: one whose point forces moved
+    (the raster, fields, sprites and blocks depend on no force), or one after a full run cut
+    short (a Stop, a newer drag message), which no window settles; None where a layer rests
+    on another (the shadow it rests on sweeps from the forces, ``step.strata``) or
+    ``rebase`` refuses."""
+    if base.terms.rests is not None and bool(base.terms.rests.any()):
+        return None
+    p = rebase(base, units, layers)
+    return None if p is None else dataclasses.replace(p, forces=[layer.forces for layer in layers])
+
+
 def reflow(base: Problem, units, layers, canvas, previous, pinned, pin_xy, pin_angle,
            on_frame=None, cancel=None, settings: ReflowSettings = SETTINGS) -> Result | None:
     """The layout of ``units`` after a small change, answered from ``base`` (see the module
