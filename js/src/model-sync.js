@@ -45,10 +45,11 @@ export function currentLayer(model) {
   return Math.max(0, Math.min(s.layer, n - 1));
 }
 
-/** Sends one finished edit to Python. */
-export function commit(model, next) {
+/** Sends one finished edit to Python; `before`: the design an undo returns to (the model's
+ * unless given: a live drag's kernel changed the model's design along the way). */
+export function commit(model, next, before = model.get("design")) {
   const s = session(model);
-  s.history.record(model.get("design"));
+  s.history.record(before);
   model.set("design", next);
   model.save_changes();
 }

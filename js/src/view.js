@@ -50,9 +50,10 @@ export function renderView({ model, el, signal }) {
     unit: () => 1 / stage.scale,
     hitContext: () => hitCtx,
     eraserWidth: () => toolbar.eraserWidth(),
-    commit(next) {
+    /** Commits `next`; `before`: the design an undo returns to (default: the model's). */
+    commit(next, before) {
       draft = null;
-      commit(model, next);
+      commit(model, next, before);
     },
     setDraft(d) {
       draft = d;

@@ -239,9 +239,9 @@ function currentLayer(model) {
   const s = session(model);
   return Math.max(0, Math.min(s.layer, n - 1));
 }
-function commit(model, next) {
+function commit(model, next, before = model.get("design")) {
   const s = session(model);
-  s.history.record(model.get("design"));
+  s.history.record(before);
   model.set("design", next);
   model.save_changes();
 }
@@ -1429,6 +1429,7 @@ function select(view) {
   let lasso = null;
   let drag = null;
   const live = throttle((d, p) => send("drag", d, p), DRAG_MS);
+  const liveForce = throttle((g, p) => sendForce(g, p, false), DRAG_MS);
   function find(p, design, li) {
     const layer = design.layers[li];
     if (!layer) return null;
@@ -1501,7 +1502,10 @@ function select(view) {
       }
       if (found) {
         view.pick({ kind: found.kind, index: found.index });
-        grab = { ...found, start: p, design: clone(design), moved: false };
+        grab = { ...found, start: p, design: clone(design), moved: false, layer: view.layer() };
+        const force = found.kind === "force" && !found.direction && design.layers[grab.layer].forces[found.index];
+        grab.live = !!force && view.hasFrame() && view.model.get("status") !== "running";
+        if (grab.live) grab.from = [force.x, force.y];
         return;
       }
       view.pick(null);
@@ -1518,6 +1522,7 @@ function select(view) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
         view.setDraft(dragged(p));
+        if (grab.live) liveForce(grab, p);
       } else if (lasso) lasso.add(p);
     },
     up(p) {
@@ -1527,8 +1532,10 @@ function select(view) {
         else view.toggleSelect([drag.index], drag.additive);
         drag = null;
       } else if (grab) {
-        if (grab.moved) view.commit(dragged(p));
+        liveForce.cancel();
+        if (grab.moved) view.commit(dragged(p), grab.design);
         view.setDraft(null);
+        if (grab.moved && grab.live) sendForce(grab, p, true);
         grab = null;
       } else if (lasso) {
         lasso.add(p);
@@ -1539,6 +1546,8 @@ function select(view) {
     },
     cancel() {
       live.cancel();
+      liveForce.cancel();
+      if (grab && grab.moved && grab.live) sendForce(grab, grab.from, true);
       if (grab) view.setDraft(null);
       grab = lasso = drag = null;
     },
@@ -1567,6 +1576,9 @@ function select(view) {
   function send(type, d, p) {
     const marks = moved(d, p);
     if (marks.length) view.send({ type, units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+  }
+  function sendForce(g, p, final) {
+    view.send({ type: "force", layer: g.layer, index: g.index, x: round2(p[0]), y: round2(p[1]), final });
   }
   function ghost(ctx, i, x, y, unit) {
     const units = view.units();
@@ -2975,9 +2987,10 @@ function renderView({ model, el, signal }) {
     unit: () => 1 / stage.scale,
     hitContext: () => hitCtx,
     eraserWidth: () => toolbar.eraserWidth(),
-    commit(next) {
+    /** Commits `next`; `before`: the design an undo returns to (default: the model's). */
+    commit(next, before) {
       draft = null;
-      commit(model, next);
+      commit(model, next, before);
     },
     setDraft(d) {
       draft = d;

@@ -5,6 +5,9 @@
 // pins the rows and lays out); Shift-dragging a selected mark moves and pins the whole selection.
 // While the mark is dragged its position goes to the kernel at most every DRAG_MS ("drag"
 // messages): the kernel pins it there and reflows, so the marks around it move aside live.
+// A point force dragged after a run goes the same way ("force" messages): the kernel moves
+// it and lays out warm, so the marks follow it live; the drop commits the design (one undo
+// step) and sends the last message, `final`, which lays out in full.
 import { clone, removeForce, setContainer, setEmitter, translateContainer, updateLayer } from "../design-edit.js";
 import { angleDeg, closeStroke, dist, distToPolyline, round2 } from "../geometry.js";
 import { containerOutline, containerPath, directionArrow, insideContainer } from "../shapes.js";
@@ -23,6 +26,7 @@ export function select(view) {
   let lasso = null;
   let drag = null; // a mark drag: {index, indices, from: [[unit, x, y]] where they were, start, at, moved, additive}
   const live = throttle((d, p) => send("drag", d, p), DRAG_MS);
+  const liveForce = throttle((g, p) => sendForce(g, p, false), DRAG_MS);
 
   function find(p, design, li) {
     const layer = design.layers[li];
@@ -99,7 +103,11 @@ export function select(view) {
       }
       if (found) {
         view.pick({ kind: found.kind, index: found.index });
-        grab = { ...found, start: p, design: clone(design), moved: false };
+        grab = { ...found, start: p, design: clone(design), moved: false, layer: view.layer() };
+        // a point force dragged over a shown layout moves the marks live
+        const force = found.kind === "force" && !found.direction && design.layers[grab.layer].forces[found.index];
+        grab.live = !!force && view.hasFrame() && view.model.get("status") !== "running";
+        if (grab.live) grab.from = [force.x, force.y];
         return;
       }
       view.pick(null);
@@ -116,6 +124,7 @@ export function select(view) {
         if (!grab.moved && dist(p, grab.start) < 2 * view.unit()) return;
         grab.moved = true;
         view.setDraft(dragged(p));
+        if (grab.live) liveForce(grab, p);
       } else if (lasso) lasso.add(p);
     },
     up(p) {
@@ -125,8 +134,11 @@ export function select(view) {
         else view.toggleSelect([drag.index], drag.additive);
         drag = null;
       } else if (grab) {
-        if (grab.moved) view.commit(dragged(p));
+        liveForce.cancel(); // the drop's message is the last word
+        // undo returns to the design before the drag (the kernel moved the force along the way)
+        if (grab.moved) view.commit(dragged(p), grab.design);
         view.setDraft(null);
+        if (grab.moved && grab.live) sendForce(grab, p, true);
         grab = null;
       } else if (lasso) {
         lasso.add(p);
@@ -137,6 +149,8 @@ export function select(view) {
     },
     cancel() {
       live.cancel();
+      liveForce.cancel();
+      if (grab && grab.moved && grab.live) sendForce(grab, grab.from, true); // back where it was
       if (grab) view.setDraft(null);
       grab = lasso = drag = null;
     },
@@ -170,6 +184,11 @@ export function select(view) {
   function send(type, d, p) {
     const marks = moved(d, p);
     if (marks.length) view.send({ type, units: marks.map((m) => m[0]), x: marks.map((m) => m[1]), y: marks.map((m) => m[2]) });
+  }
+
+  /** A "force" message: the grabbed point force at `p`; `final`: the drop (or the drag given up). */
+  function sendForce(g, p, final) {
+    view.send({ type: "force", layer: g.layer, index: g.index, x: round2(p[0]), y: round2(p[1]), final });
   }
 
   /** The outline of unit i's box centred on (x, y), with a pin: where it will be pinned. */
