@@ -418,7 +418,8 @@ class Mark:
         if self._image is not None:
             alpha = np.minimum(2.0 * images.resize_alpha(self._image, size), 1.0)
         else:
-            rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True)
+            rgba = svgsafe.render_svg(_document(self._root, self._box), *size, opaque=True,
+                                      keep=True)   # for other processes too
             alpha = rgba[..., 3].astype(np.float32) / 255.0
         if self.solid:
             ink = alpha >= 0.5

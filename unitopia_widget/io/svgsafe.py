@@ -18,6 +18,7 @@ from defusedxml import DefusedXmlException
 from defusedxml.ElementTree import DefusedXMLParser
 from PIL import Image, ImageColor
 
+from . import rendercache
 from .images import MAX_PIXELS, parse_data_url, probe_size
 from .svgcost import cap_filters
 from .svgworker import RENDER_SECONDS, RenderTimeout, svg_to_png
@@ -221,7 +222,8 @@ def sanitize_svg(text: str | bytes, _nested: int = 0) -> str:
 OPAQUE_CSS = "* { opacity: 1 !important; fill-opacity: 1 !important; stroke-opacity: 1 !important }"
 
 
-def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) -> np.ndarray:
+def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False,
+               keep: bool = False) -> np.ndarray:
     """uint8 ``(height, width, 4)`` straight RGBA of a sanitised tree.
 
     The root's own ``width``/``height`` are replaced by the pixel size, so its
@@ -229,15 +231,37 @@ def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) 
     ``opaque`` renders every element at full opacity: the footprint a mark
     occupies, however translucent its paint. resvg runs in a worker process
     (``svgworker``): Ctrl-C stops it, and a render past ``RENDER_SECONDS`` is refused.
+    ``keep``: the render is kept on disk for other processes, and read from there when
+    kept (``rendercache``).
     """
     if width < 1 or height < 1 or width * height > MAX_PIXELS:
         raise ValueError(f"render size {width} x {height} is out of range")
     text = serialize(_shallow(root, width=str(int(width)), height=str(int(height)),
                               preserveAspectRatio="none"))
+    style = OPAQUE_CSS if opaque else None
+    file = rendercache.name(text, style) if keep else None
+    png = None if file is None else rendercache.load(file)
+    if png is None:
+        png = _render(root, text, width, height, style)
+        if file is not None:
+            rendercache.store(file, png)
+    with Image.open(io.BytesIO(png)) as img:
+        rgba = np.asarray(img.convert("RGBA"))
+    if rgba.shape[:2] != (height, width):
+        out = np.zeros((height, width, 4), np.uint8)
+        h, w = min(height, rgba.shape[0]), min(width, rgba.shape[1])
+        out[:h, :w] = rgba[:h, :w]
+        rgba = out
+    return rgba
+
+
+def _render(root: ET.Element, text: str, width: int, height: int, style: str | None) -> bytes:
+    """resvg's PNG bytes of ``text`` (the serialised ``root`` at ``width x height``) with the
+    style sheet ``style``."""
     with tempfile.TemporaryDirectory(prefix="unitopia-svg-") as empty:
         try:
-            png = svg_to_png(RENDER_SECONDS, svg_string=text, resources_dir=empty,
-                             style_sheet=OPAQUE_CSS if opaque else None)
+            return bytes(svg_to_png(RENDER_SECONDS, svg_string=text, resources_dir=empty,
+                                    style_sheet=style))
         except RenderTimeout:
             raise ValueError(f"SVG could not be drawn at {width} x {height} px within "
                              f"{RENDER_SECONDS:g} s, so resvg was stopped ({_costliest(root)}); "
@@ -246,14 +270,6 @@ def render_svg(root: ET.Element, width: int, height: int, opaque: bool = False) 
             raise
         except BaseException as exc:  # resvg panics surface as BaseException
             raise ValueError(f"SVG could not be rendered: {exc}") from None
-    with Image.open(io.BytesIO(bytes(png))) as img:
-        rgba = np.asarray(img.convert("RGBA"))
-    if rgba.shape[:2] != (height, width):
-        out = np.zeros((height, width, 4), np.uint8)
-        h, w = min(height, rgba.shape[0]), min(width, rgba.shape[1])
-        out[:h, :w] = rgba[:h, :w]
-        rgba = out
-    return rgba
 
 
 def _costliest(root: ET.Element) -> str:
