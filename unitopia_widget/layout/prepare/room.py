@@ -74,8 +74,9 @@ def sites(region: Region, center: np.ndarray, radius: np.ndarray, taken: np.ndar
 def regrown(p, units, layers, previous, found: np.ndarray) -> dict:
     """``{group: (scale, q)}`` for each controlled scale group of ``p`` whose rows changed
     since the snapshot ``previous`` (``found (N,)`` each unit's row there, -1 for an added
-    one) while its kept marks' sizes did not: its scale at the footprint area ratio, and
-    ``q``, the kept marks' area ratio (new scale / old, squared)."""
+    one) while its kept marks' sizes did not, and each of whose containers keeps some of
+    its marks: its scale at the footprint area ratio, and ``q``, the kept marks' area ratio
+    (new scale / old, squared)."""
     names = [layer.name for layer in layers]
     group = p.layer_groups()
     old_group = np.array([group[names.index(n)] if n in names else -1 for n in previous["layer"]])
@@ -84,11 +85,15 @@ def regrown(p, units, layers, previous, found: np.ndarray) -> dict:
     kept = found >= 0
     matched = np.zeros(len(previous), bool)
     matched[found[kept]] = True
+    keys = np.array([repr(layer.region.to_json()) for layer in layers], dtype=object)
     out = {}
     for g in np.nonzero(p.group_controlled())[0]:
         mine = group[units.layer] == g
-        if not ((mine & ~kept).any() or ((old_group == g) & ~matched).any()) or not (mine & kept).any():
+        if not ((mine & ~kept).any() or ((old_group == g) & ~matched).any()):
             continue
+        if any(not (mine & kept & (keys[units.layer] == key)).any()
+               for key in set(keys[units.layer[mine]])):
+            continue   # a container of the group keeps none of its marks: nothing to map
         ratio = old_area[found[mine & kept]] / foot[mine & kept]   # each kept unit's old scale^2
         if np.ptp(ratio) > 1e-6 * ratio.max():
             continue   # sizes or margins changed too: no one ratio to map by
