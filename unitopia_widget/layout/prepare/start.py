@@ -5,7 +5,9 @@ blocking layers left room; a layer resting on others (``strata.py``) starts
 beyond their shadow, packed or on a grid, and sees an emitted layer where it
 will rest (a packed stand-in), not where it is emitted. Without an emitter,
 marks start packed on a hexagonal lattice at the spots the layer's forces
-pull hardest (or nearest the container's centre), the way they would settle.
+pull hardest (or nearest the container's centre), the way they would settle; spread
+sizes at random spots of that room, unless ``order=`` asks for its order there
+(``pack_layer``). Units take their turns in the start order (``order.py``).
 """
 from __future__ import annotations
 
@@ -236,7 +238,7 @@ def _beyond(region: Region, sweep, centers: np.ndarray, radii: np.ndarray) -> Re
 
 
 def _stand_in(layer, region: Region, r, ranks, canvas, taken, sweep, centers, radii) -> np.ndarray:
-    """``(n, 2)`` where an emitted layer's marks ``r (n,)`` will rest: packed in data order at
+    """``(n, 2)`` where an emitted layer's marks ``r (n,)`` will rest: packed in start order at
     the spots its forces pull hardest, around the marks ``taken`` (centres, radii) and beyond
     the shadow of the discs ``centers (k, 2)``, ``radii (k,)`` it rests on (along ``sweep``)."""
     pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
