@@ -3,9 +3,9 @@
 A wide spread of sizes jams on a lattice sized for the mean mark: large marks
 overlap their neighbours and small ones leave holes. Here each layer's marks
 take, one by one, the cheapest spot (lowest force potential, or nearest the
-container's centre) whose *clearance* holds their footprint disc. A closed
-container to fill is packed largest first, small marks into the gaps; a pile
-under forces in data order, so sizes mix in it. The clearance is the
+container's centre) whose *clearance* holds their footprint disc, in the
+order the caller asks (``start.pack_layer``: largest first at random spots,
+small marks into the gaps, or in ``order=``'s order). The clearance is the
 distance to the container's edge and to every disc already placed. Spots lie
 on a fine hexagonal lattice; each keeps its clearance, lowered around every
 disc placed. Layers sharing a container are packed in block order, so a
