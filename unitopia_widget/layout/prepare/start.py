@@ -75,13 +75,14 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         under = np.isin(units.layer, [j for j in order[:order.index(i)] if resting(layers, i, j)])
         sweep = sweep_of(layer.forces, float(radius[under].max()) if under.any() else 0.0)
         under &= sweep is not None
-        if isinstance(emitter, CurveEmitter):
+        if isinstance(emitter, CurveEmitter) and emitter.mode == "free":
+            s.center[idx], arc = emitted(emitter, region, r, ranks, taken[key])
+            s.drift[idx] = emitter.drift(arc)
+        elif isinstance(emitter, CurveEmitter):
             arc = emitter.arc_positions(2 * r, ranks)
             s.center[idx] = emitter.curve.at(arc)
             s.drift[idx] = emitter.drift(arc)
-            if emitter.mode != "free":
-                s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks,
-                                      emitter.speed > 0))
+            s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks, emitter.speed > 0))
         elif isinstance(emitter, GridEmitter):
             # strata: the grid fills the room beyond the shadow of the layers it rests on
             room = _beyond(region, sweep, rest[under], radius[under]) if under.any() else region
@@ -205,6 +206,23 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
     edge = float(cost[pack.tree.query(taken)[1]].max())
     beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
     return np.where(cost <= edge, draw, beyond)
+
+
+def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
+    """Starting centres ``(n, 2)`` and arc positions ``(n,)`` of marks ``r (n,)`` (footprint
+    discs, px) a free curve emitter places: end to end along the curve in ``ranks`` order
+    (``arc_positions``); where the curve is shorter than they are, each then moves, in
+    ``ranks`` order, to the free spot of ``region`` (the container) nearest its place on the
+    curve, around the discs ``taken`` (centres, radii) already there. Squeezed onto a short
+    curve, marks would start nearly on top of each other, and alike marks pressed apart from
+    there stay nested."""
+    curve = emitter.curve
+    arc = emitter.arc_positions(2 * r, ranks)
+    if float(2 * r.sum()) <= curve.length:
+        return curve.at(arc), arc
+    pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
+    pack.stamp(*taken)
+    return pack.place_near(r, curve.at(arc), ranks), arc
 
 
 def resting(layers, a: int, b: int) -> bool:

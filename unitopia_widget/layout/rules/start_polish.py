@@ -10,6 +10,7 @@ from .state import Rule
 class StartPolishSettings:
     polish_shrink: float = 0.008   # log-scale the controlled scales give up as the polish starts
     reserve: int = 10              # a polish more is kept for legalising: 1 / reserve of the cap
+    jammed: float = 0.005          # overlap share of a group with room that keeps it settling
 
 
 class StartPolish(Rule):
@@ -20,14 +21,18 @@ class StartPolish(Rule):
     ``polish_shrink`` and freeze. Every design ends its settle here."""
 
     name = "start-polish"
-    reads = ("since_best", "travelling", "straggling", "calm", "force_layers", "iteration")
+    reads = ("since_best", "travelling", "straggling", "calm", "force_layers", "iteration", "room",
+             "overlap_g")
     writes = ("phase", "ctl")
     Settings = StartPolishSettings
 
     def __call__(self, s):
         p, steps = s.p, s.steps
+        # a closed container with room whose marks still overlap is not settled: the fill
+        # controller is still trading scale for overlap
+        jammed = s.room is not None and bool((s.room & (s.overlap_g > self.settings.jammed)).any())
         if (s.since_best >= steps.patience and not s.travelling and not s.straggling
-                and (s.calm or not s.force_layers)) \
+                and (s.calm or not s.force_layers) and not jammed) \
                 or s.iteration >= p.max_iterations - steps.polish_iterations \
                 - min(steps.polish_iterations, p.max_iterations // self.settings.reserve):
             s.phase = "polish"
