@@ -149,3 +149,14 @@ def test_a_year_sorted_real_table_draws_no_rings():
     excess = neighbour_excess(table, rows["year"])
     print(f"penguins by year: same-colour neighbours {excess:+.3f} above random")
     assert excess <= 0.08
+
+
+def test_a_real_table_of_narrowly_spread_sizes_piles_ungraded():
+    """The penguins' body masses (2,700 to 6,300 g: footprint radii 1.5 times apart) in a
+    pile under a point force: scattered largest first over the room they pack into, the
+    lightest found no gap left and ringed the pile (rho -0.39 on a larger canvas)."""
+    penguins = pytest.importorskip("palmerpenguins").load_penguins()
+    table, rows, _ = laid(penguins, size="body_mass_g", dropna=True, **PILE)
+    rho = value_rho(table, rows["body_mass_g"], POINT)
+    print(f"penguins' masses in a pile: rho of mass against distance {rho:+.3f}")
+    assert abs(rho) <= 0.2

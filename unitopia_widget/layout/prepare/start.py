@@ -31,6 +31,8 @@ from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
+LOOSE = 1.2         # discs at random spots jam at about 0.55 of an area, packed at 0.8-0.9:
+                    # a pile's scattered start takes the room of its discs widened this much
 
 
 @dataclass
@@ -195,14 +197,16 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
     at random spots (drawn from ``generator``) of the room they take, small ones into the
     gaps the large ones leave: sizes and the rows' order do not show in where marks start.
     The room: the whole container to ``fill``; for a pile, the spots the marks take packed
-    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them); spots
-    beyond it follow in ``cost`` order, for what the room does not hold."""
+    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them), their
+    discs widened ``LOOSE`` times (packed exactly, the room held too few random spots, and
+    the last, smallest marks ringed the pile); spots beyond it follow in ``cost`` order, for
+    what the room does not hold."""
     draw = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
     if fill:
         return draw
     trial = copy.copy(pack)
     trial.clear = pack.clear.copy()
-    taken = trial.place(r, cost, ranks, largest_first=False, later=later)[0]
+    taken = trial.place(r * LOOSE, cost, ranks, largest_first=False, later=later * LOOSE)[0]
     edge = float(cost[pack.tree.query(taken)[1]].max())
     beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
     return np.where(cost <= edge, draw, beyond)
