@@ -78,8 +78,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         sweep = sweep_of(layer.forces, float(radius[under].max()) if under.any() else 0.0)
         under &= sweep is not None
         if isinstance(emitter, CurveEmitter) and emitter.mode == "free":
-            s.center[idx], arc = emitted(emitter, region, r, ranks, taken[key])
-            s.drift[idx] = emitter.drift(arc)
+            s.center[idx], s.drift[idx] = emitted(emitter, region, r, ranks, taken[key])
         elif isinstance(emitter, CurveEmitter):
             arc = emitter.arc_positions(2 * r, ranks)
             s.center[idx] = emitter.curve.at(arc)
@@ -213,20 +212,21 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
 
 
 def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
-    """Starting centres ``(n, 2)`` and arc positions ``(n,)`` of marks ``r (n,)`` (footprint
-    discs, px) a free curve emitter places: end to end along the curve in ``ranks`` order
-    (``arc_positions``); where the curve is shorter than they are, each then moves, in
-    ``ranks`` order, to the free spot of ``region`` (the container) nearest its place on the
-    curve, around the discs ``taken`` (centres, radii) already there. Squeezed onto a short
-    curve, marks would start nearly on top of each other, and alike marks pressed apart from
-    there stay nested."""
+    """Starting centres and drift directions ``(n, 2)`` of marks ``r (n,)`` (footprint discs,
+    px) a free curve emitter places: end to end along the curve in ``ranks`` order
+    (``arc_positions``), drifting as the emitter says. Where the curve is shorter than they
+    are, each moves instead, in ``ranks`` order, to the free spot of ``region`` (the
+    container) nearest its place on the curve, around the discs ``taken`` (centres, radii)
+    already there, and starts at rest: it has left the curve. (Squeezed onto a short curve,
+    alike marks started nearly on top of each other and stayed nested in stacks; drifting
+    beside it as one block, a pile slid to one wall.)"""
     curve = emitter.curve
     arc = emitter.arc_positions(2 * r, ranks)
     if float(2 * r.sum()) <= curve.length:
-        return curve.at(arc), arc
+        return curve.at(arc), emitter.drift(arc)
     pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
     pack.stamp(*taken)
-    return pack.place_near(r, curve.at(arc), ranks), arc
+    return pack.place_near(r, curve.at(arc), ranks), np.zeros((len(r), 2))
 
 
 def resting(layers, a: int, b: int) -> bool:
