@@ -153,8 +153,8 @@ def test_a_year_sorted_real_table_draws_no_rings():
 
 def test_a_real_table_of_narrowly_spread_sizes_piles_ungraded():
     """The penguins' body masses (2,700 to 6,300 g: footprint radii 1.5 times apart) in a
-    pile under a point force: scattered largest first over the room they pack into, the
-    lightest found no gap left and ringed the pile (rho -0.39 on a larger canvas)."""
+    pile under a point force: scattered largest first over the room they pack into, a fifth
+    of them, the lightest, found no random spot left and ringed the pile (rho -0.49)."""
     penguins = pytest.importorskip("palmerpenguins").load_penguins()
     table, rows, _ = laid(penguins, size="body_mass_g", dropna=True, **PILE)
     rho = value_rho(table, rows["body_mass_g"], POINT)

@@ -31,8 +31,8 @@ from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
-LOOSE = 1.2         # discs at random spots jam at about 0.55 of an area, packed at 0.8-0.9:
-                    # a pile's scattered start takes the room of its discs widened this much
+WIDEN = 1.1         # a pile's scattered start widens its room by this share of spots at a time,
+BEYOND = 0.05       # while more than this share of its marks find no random spot in it
 
 
 @dataclass
@@ -196,19 +196,31 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
     at random spots (drawn from ``generator``) of the room they take, small ones into the
     gaps the large ones leave: sizes and the rows' order do not show in where marks start.
     The room: the whole container to ``fill``; for a pile, the spots the marks take packed
-    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them), their
-    discs widened ``LOOSE`` times (packed exactly, the room held too few random spots, and
-    the last, smallest marks ringed the pile); spots beyond it follow in ``cost`` order, for
-    what the room does not hold."""
+    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them), widened
+    by ``WIDEN`` of its spots at a time until all but ``BEYOND`` of the marks find a random
+    spot in it (discs at random spots jam near 0.55 of an area, packed ones near 0.85:
+    near-equal sizes need a wider room, while small ones fill a wide spread's gaps; left
+    beyond it, the last and smallest marks ringed the pile); spots beyond it follow in
+    ``cost`` order, for what the room does not hold."""
     draw = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
     if fill:
         return draw
     trial = copy.copy(pack)
     trial.clear = pack.clear.copy()
-    taken = trial.place(r * LOOSE, cost, ranks, largest_first=False, later=later * LOOSE)[0]
-    edge = float(cost[pack.tree.query(taken)[1]].max())
-    beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
-    return np.where(cost <= edge, draw, beyond)
+    taken = trial.place(r, cost, ranks, largest_first=False, later=later)[0]
+    ladder = np.sort(cost)
+    room = int(np.searchsorted(ladder, cost[pack.tree.query(taken)[1]].max(), side="right"))
+    while True:
+        edge = float(ladder[min(room, len(ladder)) - 1])
+        beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
+        spots = np.where(cost <= edge, draw, beyond)
+        if room >= len(ladder):
+            return spots
+        trial.clear = pack.clear.copy()
+        at = trial.place(r, spots, ranks, later=later)[0]
+        if (cost[pack.tree.query(at)[1]] > edge).mean() <= BEYOND:
+            return spots
+        room = int(room * WIDEN)
 
 
 def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
