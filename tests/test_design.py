@@ -66,10 +66,55 @@ def test_to_center_points_each_up_axis_at_the_centroid(mark, boundary):
 
 def test_orientation_errors():
     with pytest.raises(ValueError, match=r"orientation must be one of None, 'to_center', "
-                                         r"'along_emitter', or a number of degrees; got 'center'"):
+                                         r"'along_emitter', 'random', \('random', lo, hi\) in "
+                                         r"degrees, or a number of degrees; got 'center'"):
         uw.Chart(ones(3), orientation="center")
     with pytest.raises(ValueError, match=r"orientation must be finite"):
         uw.Chart(ones(3), orientation=math.inf)
+    with pytest.raises(ValueError, match=r"orientation=\('random', lo, hi\) needs lo < hi <= "
+                                         r"lo \+ 360 degrees; got \('random', 30, -30\)"):
+        uw.Chart(ones(3), orientation=("random", 30, -30))
+    with pytest.raises(ValueError, match=r"lo \+ 360 degrees; got \('random', -200, 200\)"):
+        uw.Chart(ones(3), orientation=("random", -200, 200))
+    with pytest.raises(TypeError, match=r"orientation's lowest angle must be a number, got 'a'"):
+        uw.Chart(ones(3), orientation=("random", "a", 30))
+
+
+def resultant(degrees) -> float:
+    """Mean resultant length of angles in degrees: 1 when all point one way, ~0 when spread."""
+    a = np.radians(np.asarray(degrees, float))
+    return float(np.hypot(np.cos(a).mean(), np.sin(a).mean()))
+
+
+@pytest.fixture(scope="module")
+def scattered_petals():
+    """Petals turned at random, in a blob, held (rotate=False) and refined (rotate=True)."""
+    kw = dict(mark="drop", size="v", orientation="random", container=ELLIPSE, iterations=60)
+    return [uw.Chart(ones(120), rotate=turn, **kw).layout() for turn in (False, True)]
+
+
+def test_random_orientation_turns_each_mark_its_own_way(scattered_petals):
+    held, refined = scattered_petals
+    print(f"mean resultant length: held {resultant(held['angle']):.3f}, "
+          f"refined {resultant(refined['angle']):.3f}")
+    assert resultant(held["angle"]) <= 0.25 and resultant(refined["angle"]) <= 0.25
+    assert held["angle"].nunique() == len(held)
+    again = uw.Chart(ones(120), mark="drop", size="v", orientation="random", container=ELLIPSE,
+                     iterations=60).layout()
+    np.testing.assert_allclose(again["angle"], held["angle"])       # drawn from the seed
+
+
+def test_random_orientation_within_a_range_and_kept_in_the_design():
+    chart = uw.Chart(ones(40), mark="drop", size="v", orientation=("random", -30, 30),
+                     boundary="open", fill=0.3, iterations=20)
+    angle = chart.layout()["angle"]
+    assert angle.between(-30, 30).all() and angle.max() - angle.min() > 40
+    saved = json.loads(json.dumps(chart.design()))
+    assert saved["layers"][0]["orientation"] == ["random", -30.0, 30.0]
+    assert uw.Chart.from_design(ones(40), saved).layers[0].orientation == ("random", -30.0, 30.0)
+    scope = {"df": ones(40)}
+    exec(chart.to_code(), scope)
+    assert scope["chart"].layers[0].orientation == ("random", -30.0, 30.0)
 
 
 # --- margins ------------------------------------------------------------------------------

@@ -5,6 +5,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from scipy.spatial import cKDTree
+from scipy.spatial.distance import pdist
 from scipy.stats import spearmanr
 
 import unitopia_widget as uw
@@ -136,18 +137,33 @@ def test_arc_positions_respect_unequal_lengths_and_squeeze_onto_a_short_curve():
     np.testing.assert_allclose(np.diff(tight), 30.0, atol=1e-9)
 
 
-def test_curve_layout_starts_marks_on_the_curve_in_order():
-    df = ordered_frame(20)
-    chart = uw.Chart(df, size="v", order="when", emitter=uw.CurveEmitter(S_CURVE),
-                     boundary="open", fill=0.1, iterations=20)
+def curve_start(fill):
+    """The start of 20 equal circles emitted from ``S_CURVE`` in a shuffled ``order=``:
+    the bound units, their start centres ``(20, 2)`` and footprint diameter (px)."""
+    chart = uw.Chart(ordered_frame(20), size="v", order="when", emitter=uw.CurveEmitter(S_CURVE),
+                     boundary="open", fill=fill, iterations=20)
     units = bind(chart.df, chart.layers)
     problem = engine.build_problem(units, chart.layers, chart.canvas, 0, "cpu")
     start = problem.placement.t.detach().numpy().astype(float)
+    return units, start, 2 * float(problem.disc[0] * problem.scale)
+
+
+def test_curve_layout_starts_marks_on_the_curve_in_order():
+    units, start, diameter = curve_start(fill=0.04)    # 20 marks fit on the curve end to end
+    assert 20 * diameter < Curve(S_CURVE).length
     assert cKDTree(bezier(S_CURVE)).query(start)[0].max() < 0.5
     arc = Curve(S_CURVE).nearest_arc(start)
     assert spearmanr(units.order, arc).statistic == pytest.approx(1.0)
     steps = np.diff(np.sort(arc))
     np.testing.assert_allclose(steps, steps.mean(), atol=8.0)    # even, up to the arc lookup
+
+
+def test_marks_a_curve_is_too_short_for_start_beside_it_in_order_not_on_top_of_each_other():
+    units, start, diameter = curve_start(fill=0.1)     # 20 marks longer than the curve
+    assert 20 * diameter > 1.15 * Curve(S_CURVE).length
+    assert pdist(start).min() > 0.95 * diameter        # squeezed onto the curve: 0.7
+    assert cKDTree(bezier(S_CURVE)).query(start)[0].max() < 1.5 * diameter
+    assert spearmanr(units.order, Curve(S_CURVE).nearest_arc(start)).statistic > 0.9
 
 
 # --- CurveEmitter: modes -------------------------------------------------------------

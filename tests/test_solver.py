@@ -274,7 +274,8 @@ def _settling_pile(n):
                         owner=None, stage=np.zeros(n, int), poured=0, window_start=now.clone(),
                         path=None, last_center=None, force_layers=[([0], [uw.DirectionalForce(90)])],
                         radius=1.0, travelling=False, straggling=False, calm=True, moving=None,
-                        since_best=12, iteration=96, phase="settle",
+                        since_best=12, iteration=96, phase="settle", room=None, overlap_g=np.zeros(1),
+                        outside_g=np.zeros(1),
                         ctl=SimpleNamespace(log=np.zeros(1), free=np.ones(1, bool)))
     Rest()(s)                             # the window before: nothing moved
     return s
@@ -310,6 +311,22 @@ def test_the_settle_under_forces_goes_on_while_one_mark_still_falls():
     assert not s.calm and not StartPolish()(s) and s.phase == "settle"
     window(1)                             # mark 0 rests, mark 1 jumps once: jitter
     assert s.calm and StartPolish()(s) and s.phase == "polish"
+
+
+def test_the_settle_goes_on_while_a_container_with_room_still_jams():
+    # the loss stalled while the fill controller still traded scale for crowding, and the
+    # polish froze the scale far below where it grows back to: thin marks of a heavy-tailed
+    # spread started on a lattice overlapping where large ones meet (a third left empty), a
+    # large snowflake started across a letter's stroke, caught on it (40% empty)
+    s = _settling_pile(40)
+    _window(s, lambda k: torch.zeros(40))
+    _window(s, lambda k: torch.zeros(40))           # at rest, the loss stalled
+    s.room, s.overlap_g = np.ones(1, bool), np.array([0.03])
+    assert s.calm and not StartPolish()(s) and s.phase == "settle"
+    s.overlap_g, s.outside_g = np.array([0.002]), np.array([0.02])
+    assert not StartPolish()(s) and s.phase == "settle"
+    s.outside_g = np.array([0.002])                 # no more than legalising takes away
+    assert StartPolish()(s) and s.phase == "polish"
 
 
 def test_a_mark_falling_at_small_steps_keeps_the_settle_going_and_its_moments_are_forgotten():

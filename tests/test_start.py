@@ -91,7 +91,8 @@ def test_a_closed_layer_with_spread_sizes_starts_packed_at_a_scale_its_packing_h
     # the lattice start overlaps spread sizes, and so does packing at the loose 75% scale
     assert disc_gaps(center, radius).min() > -0.05 * radius.min()
     loose = initial_scale(units, chart.layers, chart.canvas)[0][0]
-    assert 0.9 * loose < problem.group_scale[0] < loose
+    # scattered (start.pack_layer), it packs a little looser than largest first from the centre
+    assert 0.85 * loose < problem.group_scale[0] < loose
     inside = ((center[:, 0] - 200) / 150) ** 2 + ((center[:, 1] - 150) / 110) ** 2 <= 1
     assert inside.all()
 
@@ -294,13 +295,11 @@ def test_turnable_strands_start_along_a_wide_container():
 
 
 @pytest.mark.parametrize("margin", [0.0, 0.2])
-def test_tied_large_marks_whose_own_lattice_leaves_empty_holes_start_scattered(margin):
-    """20 large discs (20x the area) among 120 small ones in a closed ellipse. With a margin of
-    0.2 the holes of the large footprints' own lattice would read as empty (their middle farther
-    than a small radius from the ink): they start scattered, few touching, no nearer the centre
-    than the small ones (from the centre out there were 44 contacts, the large ones in the
-    middle). Without a margin their lattice's holes hold small marks: centre out, as before.
-    (Each mark keeps its own margin: capped at the median's, the large ones' holes are smaller.)"""
+def test_tied_large_marks_start_scattered_among_the_small_ones(margin):
+    """20 large discs (20x the area) among 120 small ones in a closed ellipse start at random
+    spots, few touching, no nearer the centre than the small ones: packed from the centre out
+    they sat in the middle (44 contacts), and with a margin of 0.2 the holes of their own
+    lattice read as empty. (Each mark keeps its own margin.)"""
     df = pd.DataFrame({"v": np.repeat([1.0, 20.0], [120, 20])})
     chart = uw.Chart(df, size="v", canvas=(400, 300), boundary="closed", margin=margin,
                      margin_of="own", container=uw.Container.ellipse(200, 150, 180, 130))
@@ -308,7 +307,7 @@ def test_tied_large_marks_whose_own_lattice_leaves_empty_holes_start_scattered(m
     big = units.area > 2 * units.area.min()
     contacts = (disc_gaps(center[big], radius[big] * (1 + margin)) < 0.5 * radius[~big].mean()).sum() / 2
     far = np.hypot(center[:, 0] - 200, center[:, 1] - 150)
-    if margin:
-        assert contacts < big.sum() and far[big].mean() > 0.9 * far[~big].mean()
-    else:
-        assert far[big].mean() < 0.8 * far[~big].mean()
+    print(f"margin {margin}: {contacts:g} contacts, mean distance large {far[big].mean():.1f} "
+          f"small {far[~big].mean():.1f}")
+    # (a large disc's centre keeps its radius from the rim: a little nearer the centre)
+    assert contacts < big.sum() and far[big].mean() > 0.85 * far[~big].mean()

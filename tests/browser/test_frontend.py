@@ -462,6 +462,20 @@ def test_layers_panel_add_rename_block_settings(page):
     assert [l["name"] for l in design(page)["layers"]] == ["ground"]
 
 
+def test_settings_turn_marks_at_random_angles_within_a_range(page):
+    mount(page)
+    page.select_option('[data-setting="orientation"]', "random")
+    assert layer(page)["orientation"] == "random"
+    page.fill('[data-setting="random_lo"]', "-30")
+    page.press('[data-setting="random_lo"]', "Enter")
+    page.fill('[data-setting="random_hi"]', "30")
+    page.press('[data-setting="random_hi"]', "Enter")
+    assert layer(page)["orientation"] == ["random", -30, 30]
+    assert page.input_value('[data-setting="random_lo"]') == "-30"
+    page.select_option('[data-setting="orientation"]', "none")
+    assert layer(page)["orientation"] is None
+
+
 def test_background_and_image_container_are_drawn(page):
     white = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8DwHwAFBQIAX8jx0gAAAABJRU5ErkJggg=="
     mount(page)

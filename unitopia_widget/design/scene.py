@@ -28,7 +28,7 @@ MAX_MARKS = 100   # marks in one layer: each renders its own sprite pyramid
 _MARK_KINDS = ("shape", "svg", "icon", "image", "sketch")
 BOUNDARIES = ("closed", "open")
 MAX_NAME = 200   # characters in a layer name
-ORIENTATIONS = (None, "to_center", "along_emitter")
+ORIENTATIONS = (None, "to_center", "along_emitter", "random")   # or ("random", lo, hi) degrees
 RANGES = ("size_range", "width_range", "height_range")   # (min_px, max_px) of a linear scale
 TALLY = ("count", "per", "rounding", "partial")   # units per row, one mark for k: design/tally.py
 TALLY_DEFAULTS = {"count": None, "per": None, "rounding": "largest-remainder", "partial": False}
@@ -140,7 +140,9 @@ class Layer:
             "container": None if self.container is None else self.container.to_json(),
             "emitter": None if self.emitter is None else self.emitter.to_json(),
             "forces": [f.to_json() for f in self.forces],
-            "boundary": self.boundary, "fill": self.fill, "orientation": self.orientation,
+            "boundary": self.boundary, "fill": self.fill,
+            "orientation": list(self.orientation) if isinstance(self.orientation, tuple)
+            else self.orientation,
             "rotate": self.rotate, "blocks": list(self.blocks), "iterations": self.iterations,
             "footprint": self.footprint, "margin_of": self.margin_of,
             "x_scale": self.x_scale, "y_scale": self.y_scale,
@@ -346,10 +348,31 @@ def _fill(value):
 
 
 def _orientation(value):
-    if value in ORIENTATIONS or (isinstance(value, Real) and not isinstance(value, bool)):
-        return value if value in ORIENTATIONS else check_finite("Layer", "orientation", value)
-    raise ValueError(f"orientation must be one of None, 'to_center', 'along_emitter', or a number "
-                     f"of degrees; got {value!r}")
+    if isinstance(value, (list, tuple)) and len(value) == 3 and value[0] == "random":
+        lo = check_finite("Layer", "orientation's lowest angle", value[1])
+        hi = check_finite("Layer", "orientation's highest angle", value[2])
+        if not lo < hi <= lo + 360:
+            raise ValueError(f"orientation=('random', lo, hi) needs lo < hi <= lo + 360 degrees; "
+                             f"got {tuple(value)!r}")
+        return ("random", lo, hi)
+    if isinstance(value, str) and value in ORIENTATIONS:
+        return value
+    if value is None:
+        return None
+    if isinstance(value, Real) and not isinstance(value, bool):
+        return check_finite("Layer", "orientation", value)
+    raise ValueError(f"orientation must be one of None, 'to_center', 'along_emitter', 'random', "
+                     f"('random', lo, hi) in degrees, or a number of degrees; got {value!r}")
+
+
+def random_range(orientation) -> tuple[float, float] | None:
+    """``(lo, hi)`` in degrees: the angles a layer's ``orientation`` draws each mark's from,
+    uniformly (``"random"``: the full turn); None when it does not draw them."""
+    if orientation == "random":
+        return (-180.0, 180.0)
+    if isinstance(orientation, tuple):
+        return orientation[1], orientation[2]
+    return None
 
 
 def _rotate(value):

@@ -62,9 +62,11 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
     mark), ``margin`` (the gap to its neighbours, a fraction of the mark's size; or a column),
     ``margin_of`` ("median", the default: a mark larger than its layer's median mark keeps
     the median mark's gap; "own": each mark's own size however large), ``order`` (emission
-    order column), ``container``, ``emitter``, ``forces``, ``boundary``
+    order column; without it, an order drawn from the seed), ``container``, ``emitter``, ``forces``, ``boundary``
     ("closed" fills, "open" only bounds), ``fill`` (share of the container
-    covered; open default 0.5), ``orientation``, ``rotate``, ``footprint`` ("silhouette":
+    covered; open default 0.5), ``orientation`` (None, "to_center", "along_emitter",
+    degrees, "random" or ("random", lo, hi) degrees: each mark its own angle drawn from the
+    seed), ``rotate``, ``footprint`` ("silhouette":
     a mark collides with its ink with enclosed holes filled; "ink": its ink alone, so
     marks may nest), ``canvas`` (w, h) px,
     ``background`` (image), ``seed``, ``device`` ("cpu", "cuda", None = automatic),

@@ -28,14 +28,19 @@ export function createSettingsPanel(view) {
     if (!layer) return replaceChildren(body, h("p", { class: "ut-hint", text: "No layer." }));
     title.textContent = `Layer settings: ${layer.name}`;
     const orient = layer.orientation;
-    const orientKind = typeof orient === "number" ? "angle" : orient || "none";
+    // orientation: null, "to_center", "along_emitter", degrees, "random" or ["random", lo, hi]
+    const orientKind = typeof orient === "number" ? "angle" : Array.isArray(orient) ? "random" : orient || "none";
+    const [lo, hi] = Array.isArray(orient) ? orient.slice(1) : [-180, 180];
+    const range = (from, to) => set({ orientation: from === -180 && to === 180 ? "random" : ["random", from, to] });
     const margin = layer.encodings?.margin;
     const rows = [
       row("boundary", select("boundary", [["closed", "closed (fill)"], ["open", "open (bound only)"]], layer.boundary || "closed", (v) => set({ boundary: v }))),
       row("fill", input("fill", { type: "number", min: "0.05", max: "1", step: "0.05", value: layer.fill ?? "", placeholder: "auto" }, (t) => set({ fill: num(t.value) }))),
-      row("orientation", select("orientation", [["none", "none"], ["to_center", "to centre"], ["along_emitter", "along emitter"], ["angle", "angle\u2026"]], orientKind, (v) =>
+      row("orientation", select("orientation", [["none", "none"], ["to_center", "to centre"], ["along_emitter", "along emitter"], ["angle", "angle\u2026"], ["random", "random angles\u2026"]], orientKind, (v) =>
         set({ orientation: v === "none" ? null : v === "angle" ? 0 : v }))),
       orientKind === "angle" && row("angle", input("angle", { type: "number", step: "5", value: orient }, (t) => set({ orientation: num(t.value) ?? 0 }))),
+      orientKind === "random" && row("angles from", input("random_lo", { type: "number", step: "5", value: lo }, (t) => range(num(t.value) ?? -180, hi))),
+      orientKind === "random" && row("angles to", input("random_hi", { type: "number", step: "5", value: hi }, (t) => range(lo, num(t.value) ?? 180))),
       row("arrange", select("arrange", [["free", "free (packed)"], ["grid", "grid (rows and columns)"]], layer.arrange || "free", (v) => set({ arrange: v }))),
       ...["x", "y"].map((c) => layer.encodings?.[c] != null && row(`${c} scale`,
         select(`${c}_scale`, [["linear", "linear"], ["log", "log"]], layer[`${c}_scale`] || "linear", (v) => set({ [`${c}_scale`]: v })))),

@@ -4,6 +4,7 @@ blocks (one-way from ``layer.blocks``; two-way between layers that share a conta
 do not block each other), starting positions from the emitters, the global scale."""
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 
@@ -20,6 +21,7 @@ from ..step.raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyr
 from ..step.strata import Radial, sweep_of
 from . import arrange, positions
 from .fields import region_fields
+from .order import start_order
 from .pack import thin
 from .problem import Cancelled, Problem
 from .scale import initial_scale, packed_scales, scale_cap
@@ -38,12 +40,14 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     returning True between its steps raises ``Cancelled``. ``on_start(frame)`` gets the start
     frame (``step.placement.frame``) as soon as the start positions are known, before the region
     fields and sprites: what ``solve`` would send first; ``abort`` is not asked after it."""
+    # without order=, the units start in an order drawn from the seed, not the rows' order
+    units = dataclasses.replace(units, order=start_order(units, layers, seed))
     order = block_order(layers)
     # each layer's widest disc, measured once for the start scale and the packed one
     caps = [scale_cap(units, layers, canvas, i) for i in range(len(layers))]
     group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales, caps)
     group_scale = packed_scales(units, layers, order, canvas, group_scale, group_free,
-                                scale_group, caps)
+                                scale_group, caps, seed)
     rho_start = min(1.0, 600.0 / max(canvas))   # the start's region raster
     group_scale, group_free = arrange.grid_scales(units, layers, canvas, group_scale, group_free,
                                                   scale_group, rho_start)

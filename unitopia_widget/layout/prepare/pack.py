@@ -3,9 +3,9 @@
 A wide spread of sizes jams on a lattice sized for the mean mark: large marks
 overlap their neighbours and small ones leave holes. Here each layer's marks
 take, one by one, the cheapest spot (lowest force potential, or nearest the
-container's centre) whose *clearance* holds their footprint disc. A closed
-container to fill is packed largest first, small marks into the gaps; a pile
-under forces in data order, so sizes mix in it. The clearance is the
+container's centre) whose *clearance* holds their footprint disc, in the
+order the caller asks (``start.pack_layer``: largest first at random spots,
+small marks into the gaps, or in ``order=``'s order). The clearance is the
 distance to the container's edge and to every disc already placed. Spots lie
 on a fine hexagonal lattice; each keeps its clearance, lowered around every
 disc placed. Layers sharing a container are packed in block order, so a
@@ -123,6 +123,28 @@ class Packing:
         self.clear[by_cost] = clear
         return centers, fitted
 
+
+    def place_near(self, radii: np.ndarray, targets: np.ndarray, ranks: np.ndarray) -> np.ndarray:
+        """Centres ``(n, 2)`` for discs ``radii (n,)``, each in ``ranks`` order at the spot
+        nearest its own target ``targets (n, 2)`` (canvas px) whose clearance holds it, else
+        at the roomiest spot; the clearances are lowered as they are placed."""
+        if self.tree is None:
+            raise ValueError("container: no spot inside it to place marks on")
+        centers = np.zeros((len(radii), 2))
+        for i in np.argsort(ranks, kind="stable"):
+            r, k = float(radii[i]), -1
+            count = min(64, len(self.points))
+            while k < 0:
+                near = np.atleast_1d(self.tree.query(targets[i], k=count)[1])
+                holds = near[self.clear[near] >= r]
+                if len(holds):
+                    k = int(holds[0])
+                elif count >= len(self.points):
+                    k = int(np.argmax(self.clear))
+                count = min(4 * count, len(self.points))
+            centers[i] = self.points[k]
+            self.stamp(centers[i:i + 1], radii[i:i + 1])
+        return centers
 
 def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
     """Index of the first spot from ``start`` whose clearance holds ``r``; ``missing`` if none."""

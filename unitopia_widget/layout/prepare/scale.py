@@ -6,13 +6,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import torch
 
 from ...design.encodings import footprint
 from ...design.sharing import by_container
 from ...design.units import Units
 from .lattice import Region
 from .pack import STEP, Packing, packable, thin
-from .start import emission_ranks, footprint_radius, later_radius, spot_cost
+from .start import emission_ranks, footprint_radius, later_radius, pack_layer, spot_cost
 
 DEFAULT_OPEN_FILL = 0.5
 MAX_COVER = 0.9           # the most of a container marks can cover (discs pack to about 0.907)
@@ -100,10 +101,11 @@ def widest_disc(container, canvas) -> float:
     return float(Region(container.coverage(canvas, rho), rho).depth.max())
 
 
-def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps):
+def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps, seed):
     """``(G,)`` starting scales. A controlled group with layers packed by size starts at the
-    largest scale (up to ``caps (L,)``, the widest disc) at which those layers still pack,
-    largest mark first, into their containers (bisection on the log scale). A fixed group
+    largest scale (up to ``caps (L,)``, the widest disc) at which those layers still pack
+    into their containers as the start packs them (``start.pack_layer``, its random spots
+    drawn from ``seed``; bisection on the log scale). A fixed group
     (open layers at their ``fill``) whose footprints crowd their containers past ``CROWDED``
     is lowered to ``PACK_SLACK`` times the largest scale at which they pack: spiky marks need
     more room than their ink (snowflakes, stars; margins too), and a fill their footprints
@@ -138,7 +140,8 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
                 ranks = emission_ranks(units.order[units.layer == i])
                 cost = spot_cost(layers[i], layers[i].region, canvas, pack.points)
                 later = later_radius(units, layers, members, i, radius) * scale
-                if not pack.place(r, cost, ranks, later=later, until_miss=True)[1]:
+                draw = torch.Generator().manual_seed(int(seed))
+                if not pack_layer(pack, layers[i], r, cost, ranks, later, draw, until_miss=True)[1]:
                     return False
             return True
 

@@ -5,10 +5,13 @@ blocking layers left room; a layer resting on others (``strata.py``) starts
 beyond their shadow, packed or on a grid, and sees an emitted layer where it
 will rest (a packed stand-in), not where it is emitted. Without an emitter,
 marks start packed on a hexagonal lattice at the spots the layer's forces
-pull hardest (or nearest the container's centre), the way they would settle.
+pull hardest (or nearest the container's centre), the way they would settle; spread
+sizes at random spots of that room, unless ``order=`` asks for its order there
+(``pack_layer``). Units take their turns in the start order (``order.py``).
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 
@@ -20,6 +23,7 @@ from .curves import CurveTrack
 from ...design.emitters import CurveEmitter, GridEmitter
 from ...design.encodings import footprint
 from ...design.forces import potential
+from ...design.scene import random_range
 from ..step.placement import DRIFT_DECAY
 from ..step.strata import Radial, shadow, shadow_distance, sweep_of
 from .lattice import Region, fitting_lattice, grid_spacing
@@ -27,6 +31,8 @@ from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
+WIDEN = 1.1         # a pile's scattered start widens its room by this share of spots at a time,
+BEYOND = 0.05       # while more than this share of its marks find no random spot in it
 
 
 @dataclass
@@ -71,13 +77,13 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         under = np.isin(units.layer, [j for j in order[:order.index(i)] if resting(layers, i, j)])
         sweep = sweep_of(layer.forces, float(radius[under].max()) if under.any() else 0.0)
         under &= sweep is not None
-        if isinstance(emitter, CurveEmitter):
+        if isinstance(emitter, CurveEmitter) and emitter.mode == "free":
+            s.center[idx], s.drift[idx] = emitted(emitter, region, r, ranks, taken[key])
+        elif isinstance(emitter, CurveEmitter):
             arc = emitter.arc_positions(2 * r, ranks)
             s.center[idx] = emitter.curve.at(arc)
             s.drift[idx] = emitter.drift(arc)
-            if emitter.mode != "free":
-                s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks,
-                                      emitter.speed > 0))
+            s.track_specs.append((idx, emitter.curve, emitter.mode, arc, ranks, emitter.speed > 0))
         elif isinstance(emitter, GridEmitter):
             # strata: the grid fills the room beyond the shadow of the layers it rests on
             room = _beyond(region, sweep, rest[under], radius[under]) if under.any() else region
@@ -117,6 +123,10 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         s.movable[idx] = speed > 0
         s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
         s.angle[idx], s.turnable[idx] = _angles(layer)
+        span = random_range(layer.orientation)
+        if span is not None:   # each mark turned by its own angle, drawn from the seed
+            draw = torch.rand(len(idx), generator=generator, dtype=torch.float64).numpy()
+            s.angle[idx] = np.radians(span[0] + (span[1] - span[0]) * draw)
         if _lengthwise(layer, units, idx):
             # thin marks start along the container's long axis, side by side: upright, the
             # longest spans a wide container's height and keeps the scale from growing
@@ -138,10 +148,11 @@ def later_radius(units, layers, order, i, radius) -> float:
 def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, reach, canvas, later,
            generator):
     """Starting centres ``(n, 2)`` of a layer without an emitter: thin turnable marks in rows
-    along the container, spread sizes packed by size (one packing per container, shared by
-    the layers in it), else lattice spots ranked by the forces. A closed container with no
-    force is packed from its centre out, but the marks ``_apart`` picks start scattered over
-    it (drawn from ``generator``). ``later``: see ``later_radius``."""
+    along the container, spread sizes packed disc by disc (one packing per container, shared by
+    the layers in it), else lattice spots ranked by the forces. Spread sizes start
+    ``scattered`` over the room they take, unless ``order=`` is bound: then they are packed
+    in its order, the first at the spots the forces pull hardest (or the container's
+    centre). ``later``: see ``later_radius``."""
     container = layer.region
     if _lengthwise(layer, units, idx) and key not in packings:
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
@@ -152,25 +163,82 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         if key not in packings:
             packings[key] = Packing(region, STEP * float(np.median(r)), reach)
             packings[key].stamp(*taken)
-        cost = spot_cost(layer, container, canvas, packings[key].points)
-        # a container to fill: largest first, small ones into the gaps; a pile under forces:
-        # in data order (or ``order=``), so sizes mix and order still reads from the pile
-        fill = layer.boundary == "closed" and layer.fill is None
+        pack = packings[key]
+        cost = spot_cost(layer, container, canvas, pack.points)
         # too few to fill it (a shared scale held by a fuller container): spread over it
-        sparse = fill and float((math.pi * r ** 2).sum()) < SPARSE * region.area
-        apart = _apart(units, idx, r, scale) if fill and not sparse and not layer.forces else None
-        if apart is None or not apart.any():
-            return packings[key].place(r, cost, ranks, largest_first=fill, roomiest=sparse, later=later)[0]
-        # marks whose lattice among themselves would leave holes that read as empty start at
-        # random spots, largest first, and the others from the centre out between them
-        out, rest = np.zeros((len(idx), 2)), ~apart
-        scatter = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
-        out[apart] = packings[key].place(r[apart], scatter, ranks[apart],
-                                         later=max(float(r[rest].max(initial=0.0)), later))[0]
-        if rest.any():
-            out[rest] = packings[key].place(r[rest], cost, ranks[rest], later=later)[0]
-        return out
+        sparse = closed_fill(layer) and float((math.pi * r ** 2).sum()) < SPARSE * region.area
+        return pack_layer(pack, layer, r, cost, ranks, later, generator, sparse)[0]
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
+
+
+def closed_fill(layer) -> bool:
+    """Whether a layer fills its container (closed, no ``fill=`` share)."""
+    return layer.boundary == "closed" and layer.fill is None
+
+
+def pack_layer(pack, layer, r, cost, ranks, later, generator, sparse=False, until_miss=False):
+    """``Packing.place`` for a layer's discs ``r (n,)`` (``cost (M,)`` per spot of ``pack``,
+    ``ranks (n,)`` the start order): with ``order=`` bound, in its order from the cheapest
+    spot out (order reads from the pile); ``sparse``: each at the roomiest spot; else
+    ``scattered`` over the room they take. The scale search (``scale.packed_scales``) packs
+    the same way."""
+    if sparse:
+        return pack.place(r, cost, ranks, largest_first=False, roomiest=True, later=later,
+                          until_miss=until_miss)
+    if layer.encodings["order"] is not None:
+        return pack.place(r, cost, ranks, largest_first=False, later=later, until_miss=until_miss)
+    return pack.place(r, scattered(pack, r, cost, ranks, closed_fill(layer), later, generator),
+                      ranks, later=later, until_miss=until_miss)
+
+
+def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.ndarray:
+    """``(M,)`` a cost per spot of ``pack`` that starts marks ``r (n,)``, placed largest first,
+    at random spots (drawn from ``generator``) of the room they take, small ones into the
+    gaps the large ones leave: sizes and the rows' order do not show in where marks start.
+    The room: the whole container to ``fill``; for a pile, the spots the marks take packed
+    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them), widened
+    by ``WIDEN`` of its spots at a time until all but ``BEYOND`` of the marks find a random
+    spot in it (discs at random spots jam near 0.55 of an area, packed ones near 0.85:
+    near-equal sizes need a wider room, while small ones fill a wide spread's gaps; left
+    beyond it, the last and smallest marks ringed the pile); spots beyond it follow in
+    ``cost`` order, for what the room does not hold."""
+    draw = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
+    if fill:
+        return draw
+    trial = copy.copy(pack)
+    trial.clear = pack.clear.copy()
+    taken = trial.place(r, cost, ranks, largest_first=False, later=later)[0]
+    ladder = np.sort(cost)
+    room = int(np.searchsorted(ladder, cost[pack.tree.query(taken)[1]].max(), side="right"))
+    while True:
+        edge = float(ladder[min(room, len(ladder)) - 1])
+        beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
+        spots = np.where(cost <= edge, draw, beyond)
+        if room >= len(ladder):
+            return spots
+        trial.clear = pack.clear.copy()
+        at = trial.place(r, spots, ranks, later=later)[0]
+        if (cost[pack.tree.query(at)[1]] > edge).mean() <= BEYOND:
+            return spots
+        room = int(room * WIDEN)
+
+
+def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
+    """Starting centres and drift directions ``(n, 2)`` of marks ``r (n,)`` (footprint discs,
+    px) a free curve emitter places: end to end along the curve in ``ranks`` order
+    (``arc_positions``), drifting as the emitter says. Where the curve is shorter than they
+    are, each moves instead, in ``ranks`` order, to the free spot of ``region`` (the
+    container) nearest its place on the curve, around the discs ``taken`` (centres, radii)
+    already there, and starts at rest: it has left the curve. (Squeezed onto a short curve,
+    alike marks started nearly on top of each other and stayed nested in stacks; drifting
+    beside it as one block, a pile slid to one wall.)"""
+    curve = emitter.curve
+    arc = emitter.arc_positions(2 * r, ranks)
+    if float(2 * r.sum()) <= curve.length:
+        return curve.at(arc), emitter.drift(arc)
+    pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
+    pack.stamp(*taken)
+    return pack.place_near(r, curve.at(arc), ranks), np.zeros((len(r), 2))
 
 
 def resting(layers, a: int, b: int) -> bool:
@@ -204,7 +272,7 @@ def _beyond(region: Region, sweep, centers: np.ndarray, radii: np.ndarray) -> Re
 
 
 def _stand_in(layer, region: Region, r, ranks, canvas, taken, sweep, centers, radii) -> np.ndarray:
-    """``(n, 2)`` where an emitted layer's marks ``r (n,)`` will rest: packed in data order at
+    """``(n, 2)`` where an emitted layer's marks ``r (n,)`` will rest: packed in start order at
     the spots its forces pull hardest, around the marks ``taken`` (centres, radii) and beyond
     the shadow of the discs ``centers (k, 2)``, ``radii (k,)`` it rests on (along ``sweep``)."""
     pack = Packing(region, STEP * float(np.median(r)), float(r.max()))
@@ -252,17 +320,6 @@ def _settled(region: Region, r: np.ndarray, ranks, layer, taken, container, canv
     if len(best) < count:
         raise ValueError(f"layer {layer.name!r}: its container is too small for {count} marks")
     return best[ranks]
-
-
-def _apart(units, idx, r, scale) -> np.ndarray:
-    """``(n,)`` bool, the marks ``idx`` (footprint discs ``r (n,)``, canvas px; ``scale (N,)``)
-    that must not pack among themselves: three such footprints touching leave a hole whose
-    middle lies ``2 r / sqrt(3)`` from their centres, farther than a median mark's radius from
-    their ink, so it reads as empty (tied large sizes with a margin: packed from the centre
-    out they form a lattice of their own, with the small marks at the rim). Scattered, the
-    smaller marks settle between them."""
-    ink = np.sqrt(units.area[idx] / math.pi) * scale[idx]
-    return 2 * r / math.sqrt(3) - ink > float(np.median(ink))
 
 
 def spot_cost(layer, container, canvas, points: np.ndarray) -> np.ndarray:
@@ -338,4 +395,5 @@ def orientation_targets(units, layers, canvas, device):
 
 def any_angle(layers) -> bool:
     """Whether some layer's marks turn or stand at an angle (then every patch holds any rotation)."""
-    return any(turn or abs(angle) > 1e-6 for angle, turn in map(_angles, layers))
+    return any(turn or abs(angle) > 1e-6 or random_range(layer.orientation) is not None
+               for layer, (angle, turn) in zip(layers, map(_angles, layers)))

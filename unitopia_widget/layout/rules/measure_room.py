@@ -48,6 +48,15 @@ def measures_room(p, ctl) -> bool:
     return p.reach is not None and bool(ctl.free.any())
 
 
+def jammed(s, share: float) -> np.ndarray:
+    """Bool ``(G,)``: groups with room (``State.room``) whose overlap or ink outside is still
+    above ``share``: their fill controller still trades scale for crowding. All False
+    before room was measured."""
+    if s.room is None:
+        return np.zeros(len(s.overlap_g), dtype=bool)
+    return s.room & ((s.overlap_g > share) | (s.outside_g > share))
+
+
 def room(p, ctl, cover: np.ndarray | None,
          c: MeasureRoomSettings = MeasureRoomSettings()) -> np.ndarray:
     """Bool ``(G,)``: controlled groups whose closed containers all still have room
