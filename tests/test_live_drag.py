@@ -79,7 +79,7 @@ def test_dragging_a_mark_reflows_its_neighbours_while_it_moves_and_the_drop_lays
               and np.abs(during[k][1:, :2] - during[k - 1][1:, :2]).max() > 0.01]
     assert len(others) >= 3, f"only {len(others)} streamed frames moved the other marks"
     assert w.status == "done" and not w.stale, "the drop ends with the final layout"
-    assert set(w._chart.result.phases) == {"reflow"}, "a warm reflow answered"
+    assert not w._chart.result.cancelled, "the drop's run is not cut by a drag message"
     assert w.placements[["x", "y"]].iloc[0].tolist() == pytest.approx(moves[-1], abs=0.01)
     np.testing.assert_allclose(frame_of(w)[:, :2], w.placements[["x", "y"]], atol=1e-3)
     assert static == ["done"], "only the drop's run refreshes the notebook's static image"
