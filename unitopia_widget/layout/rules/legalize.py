@@ -6,8 +6,9 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
+from ...design.forces import DirectionalForce
 from .resurface import resurface
-from .state import Rule, State, unit_overlap
+from .state import Rule, State, forget, movable, unit_overlap
 from .uncross import uncross
 
 
@@ -59,7 +60,7 @@ class Legalize(Rule):
     name = "legalize"
     phase = "polish"
     reads = ("polish_left", "iteration", "overlap_g", "outside_g", "rounds", "values", "index",
-             "owner", "ctl")
+             "owner", "ctl", "force_layers")
     writes = ("rounds", "polish_left", "ctl", "place", "optimizer", "done")
     Settings = LegalizeSettings
 
@@ -80,8 +81,69 @@ class Legalize(Rule):
             # a wedged hollow unit's contact opens as the scale gives up a share of its size: the
             # shrink follows the worst unit's overlapped share, up to shrink_max
             wedged = np.minimum(c.gain_unit * worst, c.shrink_max)
-            ctl.log -= bad * np.maximum(np.maximum(c.shrink, wedged),
-                                        give * np.maximum(s.overlap_g, s.outside_g))
+            shrink = bad * np.maximum(np.maximum(c.shrink, wedged),
+                                      give * np.maximum(s.overlap_g, s.outside_g))
+            ctl.log -= shrink
+            piles = [(m, fs) for m, fs in s.force_layers
+                     if not ctl.free[ctl.unit_group[int(m[0])]]] if s.force_layers else []
+            if piles:
+                press(p, s.place, s.optimizer, piles, np.exp(-shrink)[ctl.unit_group])
             return True
         s.done = True
         return False
+
+
+def pull_of(forces) -> np.ndarray | None:
+    """The unit vector ``(2,)`` of the net pull of ``forces`` when they are all directional,
+    else None (a point force holds a pile around it, not on a floor; a net pull of nothing
+    holds it nowhere)."""
+    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
+        return None
+    net = np.sum([np.multiply(f.vector, f.strength) for f in forces], axis=0)
+    norm = float(np.hypot(*net))
+    return net / norm if norm > 1e-9 else None
+
+
+def floor_distance(coverage: np.ndarray, rho: float, center: np.ndarray,
+                   pull: np.ndarray) -> np.ndarray:
+    """``(n,)`` canvas px from each of ``center (n, 2)`` along ``pull (2,)`` to where the
+    region (``coverage (H, W)``, ``rho`` raster px per canvas px) ends: each mark's own floor
+    (0 for a centre already outside)."""
+    h, w = coverage.shape
+    reach = np.hypot(h, w) / rho
+    t = np.arange(0.0, reach + 1.0 / rho, 0.5 / rho)                    # (K,) half-pixel steps
+    at = center[:, None, :] + t[None, :, None] * pull[None, None, :]   # (n, K, 2)
+    j, i = np.floor(at[..., 0] * rho).astype(int), np.floor(at[..., 1] * rho).astype(int)
+    inside = (i >= 0) & (i < h) & (j >= 0) & (j < w)
+    inside[inside] = coverage[i[inside], j[inside]] >= 0.5
+    first = np.where(inside.all(1), len(t) - 1, np.argmin(inside, axis=1))
+    return t[first]
+
+
+def press(p, place, optimizer, piles, unit_ratio: np.ndarray) -> None:
+    """Keep open piles pressed to their floors as their scale gives up size: marks shrunk
+    about their own centres open a gap at every contact, which the legalising rounds (no
+    force presses in them) would leave open, a pile as spread as it was at the asked size.
+    Each free unit of ``piles`` (``[(unit indices, forces), ...]``, layers pulled by
+    directional forces alone) moves along their net pull by ``1 - unit_ratio`` (``(N,)``,
+    its new size over its old) of its distance to its own floor, where its container ends
+    along the pull (``floor_distance``): a column shrinks onto its floor as one, a stratum
+    with the one it rests on, and no mark crosses a floor, however high."""
+    free = movable(place)
+    with torch.no_grad():
+        center = place.transforms()[0].detach().cpu().numpy().astype(float)
+        shift = np.zeros_like(center)
+        for members, forces in piles:
+            pull = pull_of(forces)
+            if pull is None:
+                continue
+            m = members.cpu().numpy()
+            m = m[free[m]]
+            cover = p.regions[int(p.layer[m[0]])].coverage(p.grid.canvas, p.grid.rho) \
+                if len(m) else None
+            if cover is not None:
+                depth = floor_distance(cover, p.grid.rho, center[m], pull)
+                shift[m] = ((1.0 - unit_ratio[m]) * depth)[:, None] * pull[None, :]
+        moved = np.flatnonzero(np.abs(shift).sum(1) > 0)
+        place.t[moved] += torch.as_tensor(shift[moved], dtype=place.t.dtype, device=place.t.device)
+    forget(optimizer, (place.t,), moved.tolist())
