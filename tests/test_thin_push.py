@@ -33,18 +33,20 @@ def test_thin_bars_pushed_right_pile_in_the_right_of_the_pen():
     assert (table["x"].mean() - 20) / 260 > 0.6               # within the right 40%
 
 
-def test_a_shrinking_pile_is_pressed_onto_each_marks_own_floor():
-    # a step: the floor is at y 100 left of x 50 and at y 50 right of it
+def test_a_shrinking_pile_settles_onto_each_marks_own_floor():
+    # a step: the floor is at y 100 left of x 50 and at y 50 right of it; boxes 16 px wide
     step = uw.Container.polygon([(0, 0), (100, 0), (100, 50), (50, 50), (50, 100), (0, 100)])
     p = SimpleNamespace(regions=(step, step), layer=np.array([0, 0, 0, 1]),
-                        grid=RasterGrid((100, 100), 1.0, pad=2))
-    center = np.array([[25.0, 60.0], [25.0, 20.0], [75.0, 30.0], [75.0, 30.0]])
+                        grid=RasterGrid((100, 100), 1.0, pad=2), terms=SimpleNamespace(rests=None),
+                        half_w=np.full(4, 8.0), half_h=np.full(4, 8.0), margin=np.zeros(4))
+    center = np.array([[25.0, 60.0], [25.0, 20.0], [75.0, 30.0], [25.0, 50.0]])
     place = Placement(center, np.zeros(4), np.ones(4, bool), np.zeros(4, bool), "cpu")
     optimizer = torch.optim.Adam([place.t])
     piles = [(torch.tensor([0, 1, 2]), [DirectionalForce(90)]),
-             (torch.tensor([3]), [PointForce(75, 0)])]         # a point holds no floor: left
-    press(p, optimizer=optimizer, place=place, piles=piles, unit_ratio=np.full(4, 0.9))
+             (torch.tensor([3]), [PointForce(75, 0)])]         # a point holds no floor: stays
+    press(p, place, optimizer, piles, np.ones(4))
     moved = place.t.detach().numpy()
-    # a tenth of each mark's way down to its own floor, the high step's one not passed
-    assert moved[:, 1] == pytest.approx([64.0, 28.0, 32.0, 30.0])
+    # each box down to half a px above its own floor: the low one (0), the high step's (2),
+    # and the box of the mark that stays, below mark 1 (not the container's floor)
+    assert moved[:, 1] == pytest.approx([91.5, 34.0, 41.5, 50.0])
     assert moved[:, 0] == pytest.approx(center[:, 0])
