@@ -50,3 +50,19 @@ def test_a_shrinking_pile_settles_onto_each_marks_own_floor():
     # and the box of the mark that stays, below mark 1 (not the container's floor)
     assert moved[:, 1] == pytest.approx([91.5, 34.0, 41.5, 50.0])
     assert moved[:, 0] == pytest.approx(center[:, 0])
+
+
+def test_a_stratum_stays_out_of_the_shadow_of_the_one_it_rests_on():
+    # layer 1 rests on layer 0 (rests[1, 0]): its mark stops above the top of layer 0's box
+    # where that box stood, short of the floor the lower mark drops to
+    box = uw.Container.rect(0, 0, 100, 100)
+    p = SimpleNamespace(regions=(box, box), layer=np.array([0, 1]),
+                        grid=RasterGrid((100, 100), 1.0, pad=2),
+                        terms=SimpleNamespace(rests=torch.tensor([[0.0, 0.0], [1.0, 0.0]])),
+                        half_w=np.full(2, 8.0), half_h=np.full(2, 8.0), margin=np.zeros(2))
+    center = np.array([[25.0, 45.0], [20.0, 10.0]])
+    place = Placement(center, np.zeros(2), np.ones(2, bool), np.zeros(2, bool), "cpu")
+    optimizer = torch.optim.Adam([place.t])
+    down = [DirectionalForce(90)]
+    press(p, place, optimizer, [(torch.tensor([0]), down), (torch.tensor([1]), down)], np.ones(2))
+    assert place.t.detach().numpy()[:, 1] == pytest.approx([91.5, 29.0])
