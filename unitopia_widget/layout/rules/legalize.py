@@ -112,9 +112,10 @@ def pull_of(forces) -> np.ndarray | None:
 
 def floor_distance(coverage: np.ndarray, rho: float, center: np.ndarray,
                    pull: np.ndarray) -> np.ndarray:
-    """``(n,)`` canvas px from each of ``center (n, 2)`` along ``pull (2,)`` to where the
-    region (``coverage (H, W)``, ``rho`` raster px per canvas px) ends, in half raster px
-    (0 for a point already outside)."""
+    """``(n,)`` canvas px from each of ``center (n, 2)`` along ``pull (2,)`` to the first
+    raster pixel not wholly inside the region (``coverage (H, W)``, ``rho`` raster px per
+    canvas px: the loss counts ink in a pixel the edge crosses as partly outside), in half
+    raster px (0 for a point already there)."""
     h, w = coverage.shape
     t = np.arange(0.0, np.hypot(h, w) / rho + 1.0 / rho, 0.5 / rho)   # (K,) half-pixel steps
     out = np.zeros(len(center))
@@ -122,7 +123,7 @@ def floor_distance(coverage: np.ndarray, rho: float, center: np.ndarray,
         at = center[k:k + 256, None, :] + t[None, :, None] * pull[None, None, :]
         j, i = np.floor(at[..., 0] * rho).astype(int), np.floor(at[..., 1] * rho).astype(int)
         inside = (i >= 0) & (i < h) & (j >= 0) & (j < w)
-        inside[inside] = coverage[i[inside], j[inside]] >= 0.5
+        inside[inside] = coverage[i[inside], j[inside]] >= 1.0
         out[k:k + 256] = t[np.where(inside.all(1), len(t) - 1, np.argmin(inside, axis=1))]
     return out
 
