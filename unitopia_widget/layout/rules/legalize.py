@@ -56,7 +56,8 @@ class Legalize(Rule):
     ``uncross`` and ``resurface`` rules, with their default settings), and a shorter polish
     runs again, up to ``rounds`` (``rounds_open`` without a controlled scale); otherwise the
     layout is done. As a fixed (open) scale gives up size, the piles its layers form under
-    directional forces drop back onto their floors (``press``): needed by open fills the
+    directional forces drop back onto their floors (``press``), each round and once more
+    when the layout is done (``press_piles``): needed by open fills the
     marks cannot pack at the asked scale, thin marks above all (12:1 arrows pushed right
     into a pen stood spread over it: the corpus's k2-thin-push pull 0.51 -> 0.62 over
     seeds 0-4, fill 23 -> 25%; strata on a ringed floor, m015, 0.95 -> 0.98 in order).
@@ -90,13 +91,20 @@ class Legalize(Rule):
             shrink = bad * np.maximum(np.maximum(c.shrink, wedged),
                                       give * np.maximum(s.overlap_g, s.outside_g))
             ctl.log -= shrink
-            piles = [(m, fs) for m, fs in s.force_layers
-                     if not ctl.free[ctl.unit_group[int(m[0])]]] if s.force_layers else []
-            if piles:
-                press(p, s.place, s.optimizer, piles, ctl.unit_scale())
+            press_piles(s)
             return True
+        press_piles(s)   # the last polish, with no force, left the piles a little loose
         s.done = True
         return False
+
+
+def press_piles(s: State) -> None:
+    """``press`` the layers pulled by forces whose fixed (open) scale has given up size."""
+    ctl = s.ctl
+    shrunk = ~ctl.free & (ctl.log < np.log(s.p.group_scales()) - 1e-9)
+    piles = [(m, fs) for m, fs in s.force_layers or () if shrunk[ctl.unit_group[int(m[0])]]]
+    if piles:
+        press(s.p, s.place, s.optimizer, piles, s.ctl.unit_scale())
 
 
 def pull_of(forces) -> np.ndarray | None:
