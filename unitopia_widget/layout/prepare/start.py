@@ -200,7 +200,8 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
     by ``WIDEN`` of its spots at a time until all but ``BEYOND`` of the marks find a random
     spot in it (discs at random spots jam near 0.55 of an area, packed ones near 0.85:
     near-equal sizes need a wider room, while small ones fill a wide spread's gaps; left
-    beyond it, the last and smallest marks ringed the pile); spots beyond it follow in
+    beyond it, the last and smallest marks ringed the pile), unless layers placed after it
+    (``later`` > 0: strata resting on it) start beyond it; spots beyond it follow in
     ``cost`` order, for what the room does not hold."""
     draw = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
     if fill:
@@ -214,7 +215,7 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
         edge = float(ladder[min(room, len(ladder)) - 1])
         beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
         spots = np.where(cost <= edge, draw, beyond)
-        if room >= len(ladder):
+        if room >= len(ladder) or later > 0:   # layers to come start beyond its exact room
             return spots
         trial.clear = pack.clear.copy()
         at = trial.place(r, spots, ranks, later=later)[0]
