@@ -123,7 +123,6 @@ class Packing:
         self.clear[by_cost] = clear
         return centers, fitted
 
-
     def place_near(self, radii: np.ndarray, targets: np.ndarray, ranks: np.ndarray) -> np.ndarray:
         """Centres ``(n, 2)`` for discs ``radii (n,)``, each in ``ranks`` order at the spot
         nearest its own target ``targets (n, 2)`` (canvas px) whose clearance holds it, else
@@ -145,6 +144,7 @@ class Packing:
             centers[i] = self.points[k]
             self.stamp(centers[i:i + 1], radii[i:i + 1])
         return centers
+
 
 def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
     """Index of the first spot from ``start`` whose clearance holds ``r``; ``missing`` if none."""

@@ -221,7 +221,7 @@ def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.n
         at = trial.place(r, spots, ranks, later=later)[0]
         if (cost[pack.tree.query(at)[1]] > edge).mean() <= BEYOND:
             return spots
-        room = int(room * WIDEN)
+        room = max(room + 1, int(room * WIDEN))   # a room of under 10 spots grows too
 
 
 def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
