@@ -26,19 +26,23 @@ import unitopia_widget as uw
 df = pd.DataFrame({"v": np.random.default_rng(0).uniform(1.0, 10.0, 1000).round(3)})
 """
 
-# the kernel's side of the drag: each frame sent (time, x y of every unit) and each drag
-# message's arrival, to count the frames sent while the pointer moved
-WATCH = """\
+
+def watch(method: str) -> str:
+    """Kernel code for the kernel's side of a drag: each frame sent (time, x y of every unit)
+    and the arrival of each live message the widget's ``method`` answers (``final=False``;
+    the drop is ``final=True``), to count the frames sent while the pointer moved."""
+    return f"""\
 sent, dragged = [], []
 w.observe(lambda c: sent.append((time.perf_counter(),
           np.frombuffer(c["new"], np.float32).reshape(-1, 4)[:, :2].copy())), "frame")
-_drag = w._drag
-def _spy(index, x, y, final):
+_answer = w.{method}
+def _spy(*args, final):
     if not final:
         dragged.append(time.perf_counter())
-    _drag(index, x, y, final)
-w._drag = _spy
+    _answer(*args, final=final)
+w.{method} = _spy
 """
+
 
 # frames sent between the first and the last drag message in which a mark other than
 # the dragged one moved by over 0.05 px
@@ -58,7 +62,7 @@ def test_dragging_a_mark_for_2_s_among_1000_moves_the_others_live_then_pins_it(l
     # the mark nearest (280, 250): dragged right, towards the centre, through the crowd
     k, x, y = lab.eval("(lambda p: (lambda k: [k, float(p.x[k]), float(p.y[k])])"
                        "(int(np.hypot(p.x - 280, p.y - 250).argmin())))(w.placements)")
-    lab.run(WATCH)
+    lab.run(watch("_drag"))
     use_tool(root, "select")
     stats = "el => [el.unitopiaStats.framesReceived, el.unitopiaStats.paints]"
     stage.scroll_into_view_if_needed()
@@ -89,19 +93,6 @@ def test_dragging_a_mark_for_2_s_among_1000_moves_the_others_live_then_pins_it(l
     assert not lab.eval("w.error")
 
 
-# the kernel's side of a force drag: each frame sent and each live force message's arrival
-WATCH_FORCE = """\
-sent, dragged = [], []
-w.observe(lambda c: sent.append((time.perf_counter(),
-          np.frombuffer(c["new"], np.float32).reshape(-1, 4)[:, :2].copy())), "frame")
-_drag_force = w._drag_force
-def _spy(layer, index, x, y, final):
-    if not final:
-        dragged.append(time.perf_counter())
-    _drag_force(layer, index, x, y, final)
-w._drag_force = _spy
-"""
-
 # frames sent between the first and the last force message in which some mark moved by over 0.05 px
 MOVED_ANY = """\
 sum(1 for (t0, a), (t1, b) in zip(sent, sent[1:])
@@ -116,7 +107,7 @@ def test_dragging_a_point_force_for_2_s_under_1000_marks_moves_them_live_then_la
     stage = root.locator(STAGE)
     root.locator('[data-action="run"]').click()
     wait_done(page, root, timeout=300_000)
-    lab.run(WATCH_FORCE)
+    lab.run(watch("_drag_force"))
     use_tool(root, "select")
     stage.scroll_into_view_if_needed()
     stage.hover()
