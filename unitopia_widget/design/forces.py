@@ -70,6 +70,15 @@ def force_from_json(d: dict):
     raise ValueError(f"force: unknown kind {kind!r}; expected 'point' or 'direction'")
 
 
+def net_pull(forces) -> tuple[float, float] | None:
+    """The strength-weighted sum ``(vx, vy)`` of ``forces``' unit vectors when they are all
+    directional, else None (none, or point forces among them)."""
+    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
+        return None
+    return (sum(f.strength * f.vector[0] for f in forces),
+            sum(f.strength * f.vector[1] for f in forces))
+
+
 def potential(forces, center: torch.Tensor) -> torch.Tensor:
     """Per-mark potential ``(N,)`` of ``center (N, 2)`` canvas px under ``forces``.
 

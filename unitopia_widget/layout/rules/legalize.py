@@ -8,7 +8,7 @@ import numpy as np
 import torch
 
 from ...design.encodings import footprint
-from ...design.forces import DirectionalForce
+from ...design.forces import net_pull
 from .resurface import resurface
 from .state import Rule, State, forget, movable, unit_overlap
 from .uncross import uncross
@@ -112,11 +112,11 @@ def pull_of(forces) -> np.ndarray | None:
     """The unit vector ``(2,)`` of the net pull of ``forces`` when they are all directional,
     else None (a point force holds a pile around it, not on a floor; a net pull of nothing
     holds it nowhere)."""
-    if not forces or not all(isinstance(f, DirectionalForce) for f in forces):
+    net = net_pull(forces)
+    if net is None:
         return None
-    net = np.sum([np.multiply(f.vector, f.strength) for f in forces], axis=0)
     norm = float(np.hypot(*net))
-    return net / norm if norm > 1e-9 else None
+    return np.asarray(net) / norm if norm > 1e-9 else None
 
 
 def floor_distance(coverage: np.ndarray, rho: float, center: np.ndarray,

@@ -29,7 +29,7 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
-from ...design.forces import DirectionalForce, PointForce
+from ...design.forces import PointForce, net_pull
 
 RAY_STEP = 1.0     # raster px between samples along a ray
 RAY_SPACING = 2.0  # raster px between neighbouring rays at the farthest pixel, at most
@@ -45,12 +45,10 @@ def sweep_of(forces, band: float = 0.0):
     if all(isinstance(f, PointForce) for f in forces):
         pull = tuple((f.x, f.y, f.strength) for f in forces if f.strength > 0)
         return Radial(pull, band) if pull else None
-    if not all(isinstance(f, DirectionalForce) for f in forces):
+    net = net_pull(forces)
+    if net is None or max(abs(net[0]), abs(net[1])) < 1e-9:
         return None
-    vx = sum(f.strength * f.vector[0] for f in forces)
-    vy = sum(f.strength * f.vector[1] for f in forces)
-    if max(abs(vx), abs(vy)) < 1e-9:
-        return None
+    vx, vy = net
     return (0, vy < 0) if abs(vy) >= abs(vx) else (1, vx < 0)
 
 
