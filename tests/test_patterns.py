@@ -160,3 +160,24 @@ def test_a_real_table_of_narrowly_spread_sizes_piles_ungraded():
     rho = value_rho(table, rows["body_mass_g"], POINT)
     print(f"penguins' masses in a pile: rho of mass against distance {rho:+.3f}")
     assert abs(rho) <= 0.2
+
+
+def test_thin_marks_of_spread_heights_fill_a_closed_container_from_any_start_order():
+    """90 strands whose heights spread 94x, mapped onto 20 to 80 px, in the closed ellipse at
+    layout seed 1: started in that seed's order, tall strands sat at the rim where only
+    short ones fit, their ink outside kept the scale from growing and the gradient could not
+    move them inwards (7.5% empty, 0.58% outside; 0.9 to 2.9% at seeds 0, 2 to 4). Poked-out
+    strands now trade places with shorter ones where they fit (``rules.exchange``), and the
+    heights still show no gradient toward the centre."""
+    logs = np.log(np.random.default_rng(5).lognormal(0.0, 1.0, 90))
+    df = pd.DataFrame({"h": np.exp((logs - logs.min()) / np.ptp(logs) * np.log(94))})
+    strand = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 80"><path '
+                         'd="M2 0 C 5 20, -1 40, 2 60 S 2 80, 2 80" stroke="black" '
+                         'stroke-width="3" fill="none"/></svg>')
+    table, rows, chart = laid(df, mark=strand, height="h", height_range=(20, 80),
+                              container=ELLIPSE, boundary="closed", seed=1)
+    d = density(chart)
+    rho = value_rho(table, rows["h"], ELLIPSE.centroid(CANVAS))
+    print(f"strands at seed 1: {d}, rho {rho:+.3f}")
+    assert d["empty"] < 0.03 and d["outside"] < 0.005 and d["overlap"] < 0.01
+    assert abs(rho) <= 0.25

@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import torch
+from scipy import ndimage
 from scipy.spatial import cKDTree
 
 import unitopia_widget as uw
@@ -14,6 +15,7 @@ from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.rules import Steps
 from unitopia_widget.layout.rules.best_loss import BestLoss
 from unitopia_widget.layout.rules.fill_scale import grow_outside
+from unitopia_widget.layout.rules.exchange import capsules, trades, unit_outside
 from unitopia_widget.layout.rules.rest import Rest
 from unitopia_widget.layout.rules.start_polish import StartPolish
 from unitopia_widget.layout.prepare import assemble
@@ -348,3 +350,34 @@ def test_a_mark_falling_at_small_steps_keeps_the_settle_going_and_its_moments_ar
     _window(s, dy)
     _window(s, dy)
     assert s.calm and StartPolish()(s)
+
+
+def test_a_poked_out_thin_mark_trades_places_with_the_nearest_shorter_one_where_it_fits():
+    yy, xx = np.mgrid[0:200, 0:300] + 0.5
+    ellipse = ((xx - 150) / 140) ** 2 + ((yy - 100) / 90) ** 2 <= 1
+    depth = ndimage.distance_transform_edt(ellipse)
+    # upright strands: 0 long at the top rim, 1 and 2 short (1 near the rim, 2 farther, in
+    # the middle), 3 long in the middle, 4 short at the bottom rim
+    center = np.array([[150.0, 30], [175, 40], [150, 100], [100, 100], [150, 180]])
+    half_w, half_h = np.full(5, 2.0), np.array([40.0, 10, 10, 40, 10])
+    girth, arm = capsules(half_w, half_h, np.zeros(5))
+    assert np.allclose(girth, 2.0) and np.allclose(np.abs(arm[:, 1]), half_h - 2.0)
+    poking = np.array([True, False, False, False, False])
+    # 0 fits at 2's place, not at 1's (its ends would cross the rim), and 2 fits at 0's
+    assert trades(center, girth, arm, poking, np.arange(5), depth) == [(0, 2)]
+    # none shorter where it fits: it stays
+    assert trades(center, girth, arm, poking, np.array([0, 1, 3, 4]), depth) == []
+    # a place so near the rim that the short one would poke out there too: no trade
+    center[0] = [150, 12]
+    assert trades(center, girth, arm, poking, np.arange(5), depth) == []
+
+
+def test_a_units_share_outside_is_read_from_its_samples_against_its_own_layers_container():
+    inside = np.array([[1.0, 1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]])    # (L=2, S=4)
+    layer = np.array([0, 1])
+    values = np.array([1.0, 1.0, 0.5, 0.5, 1.0, 1.0])
+    index = np.array([0, 1, 2, 3, 0, 1])
+    owner = np.array([0, 0, 0, 0, 1, 1])
+    ink, outside = unit_outside(values, index, owner, layer, inside)
+    np.testing.assert_allclose(ink, [3.0, 2.0])
+    np.testing.assert_allclose(outside, [1.0, 1.0])

@@ -15,6 +15,7 @@ from __future__ import annotations
 from .best_loss import BestLoss
 from .contacts import Contacts
 from .decay import Decay
+from .exchange import Exchange
 from .fill_scale import FillScale
 from .legalize import Legalize
 from .measure_room import MeasureRoom
@@ -36,6 +37,7 @@ SCHEDULE = (
     FillScale(),     # settle, every iteration: controlled scales grow into room, give way to crowding
     MeasureRoom(),   # settle, each window: which closed containers still have room
     Relocate(),      # settle, each window: jammed marks jump into holes
+    Exchange(),      # settle, each window: poked-out thin marks trade places with shorter ones
     Uncross(),       # settle, each window: crossing thin marks turn side by side
     Resurface(),     # settle, each window: buried marks lifted back onto their stratum
     Rest(),          # settle, each window (paths every iteration): marks at rest, none falling; the pull weakens
