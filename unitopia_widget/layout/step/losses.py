@@ -218,7 +218,8 @@ class CanvasTerms:
         shape = (5, like.shape[0])
         if self._rows is None or self._rows.shape != shape or self._rows.dtype != like.dtype \
                 or self._rows.device != like.device:
-            self._rows = torch.empty(shape, dtype=like.dtype, device=like.device)
+            # zeros: the covered row stays 0 where no layer has a fill target (never written)
+            self._rows = torch.zeros(shape, dtype=like.dtype, device=like.device)
         return self._rows
 
     def per_layer(self, rows: torch.Tensor, layer: torch.Tensor | None) -> torch.Tensor:
@@ -277,9 +278,7 @@ class CanvasLoss(torch.autograd.Function):
         torch.mul(share, spill, out=rows[0])
         torch.mul(values, outside, out=rows[1])
         rows[2].copy_(values)
-        if inside is None:   # no fill target: nothing covered (0 at every sample)
-            rows[3].zero_()
-        else:
+        if inside is not None:   # without a fill target the covered row stays 0 (``rows``)
             torch.mul(share, inside, out=rows[3]).mul_(total.clamp(max=1.0))
         torch.mul(values, penalty, out=rows[4])
         sums = terms.per_layer(rows, layer)                                    # (5, L)

@@ -243,10 +243,15 @@ class Planner:
                  sprite_aspects=None):
         self.args = (sprite_ids, sprite_sides, rotating, sprite_aspects)
         self.pyramids, self.grid, self.device = pyramids, grid, device
-        self.keys, self.current = None, None
+        self.keys, self.current, self.last = None, None, None
 
     def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
-        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
+        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays);
+        footprints equal to the last call's (scales that did not move) keep it unchecked."""
+        if self.last is not None and np.array_equal(half_w, self.last[0]) \
+                and np.array_equal(half_h, self.last[1]):
+            return self.current
+        self.last = (np.array(half_w), np.array(half_h))
         sprite_ids, sides, rotating, aspects = self.args
         keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, aspects)
         if self.keys is None or not np.array_equal(keys, self.keys):
