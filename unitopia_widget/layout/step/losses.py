@@ -70,6 +70,7 @@ class CanvasTerms:
     _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
     _rows: torch.Tensor | None = None          # (5, M) per-sample terms, see ``rows``
     _onehot: tuple | None = None               # (layer, its one-hot), see ``per_layer``
+    _read: torch.Tensor | None = None          # (2, M) the tables read at the samples, see ``read``
 
     @functools.cached_property
     def inside_total(self) -> float:
@@ -212,6 +213,58 @@ class CanvasTerms:
                                  for t in (self.penalty, self.outside, self.inside))
         return self._tables
 
+    @functools.cached_property
+    def border_table(self) -> torch.Tensor:
+        """``(L, H + 1, W + 1)`` int32: the summed-area table of each layer's pixels where
+        the containment penalty or the outside share is not 0 (made once: both are fixed)."""
+        h, w = self.shape
+        rim = ((self.penalty != 0) | (self.outside != 0)).view(-1, h, w).to(torch.int32)
+        table = torch.zeros(rim.shape[0], h + 1, w + 1, dtype=torch.int32, device=rim.device)
+        table[:, 1:, 1:] = rim.cumsum(1, dtype=torch.int32).cumsum(2, dtype=torch.int32)
+        return table
+
+    def border(self, index: torch.Tensor, plan, layer: torch.Tensor) -> torch.Tensor | None:
+        """``(k,)`` long, ascending: the samples of the marks whose patch meets a pixel where
+        its layer's containment penalty or outside share is not 0 (every other sample reads
+        0 in both). ``index (M,)`` as ``render_samples`` drew it with ``plan`` (a
+        ``raster.RenderPlan``: its parts' samples come mark by mark, patch origin first);
+        ``layer (N,)`` each unit's layer (long). None where that is over half the samples
+        (reading them all costs less then)."""
+        w, table = self.shape[1], self.border_table
+        picked, start = [], 0
+        for part in plan.parts:
+            n, k = len(part.idx), part.ph * part.pw
+            if part.overhangs:   # samples clamped onto the raster: no patch origin to read
+                picked.append(torch.arange(start, start + n * k, device=index.device))
+            else:
+                first = index[start:start + n * k].view(n, k)[:, 0].long()
+                r0, c0, a = first // w, first % w, layer[part.idx]
+                r1, c1 = r0 + part.ph, c0 + part.pw
+                meets = table[a, r1, c1] - table[a, r0, c1] - table[a, r1, c0] + table[a, r0, c0] > 0
+                marks = torch.nonzero(meets).reshape(-1)
+                picked.append((start + marks[:, None] * k
+                               + torch.arange(k, device=index.device)).reshape(-1))
+            start += n * k
+        border = torch.cat(picked)
+        return border if 2 * len(border) <= start else None
+
+    def read(self, flat: torch.Tensor, border: torch.Tensor | None) -> tuple:
+        """``(penalty, outside)`` ``(M,)``: the containment penalty and outside share at the
+        samples' pixels ``flat (M,)``, gathered only at ``border`` (see ``border``; None: at
+        every sample), 0 elsewhere, into a buffer kept between calls."""
+        tables = self.tables()
+        if border is None:
+            return tables[0].index_select(0, flat), tables[1].index_select(0, flat)
+        shape = (2, flat.shape[0])
+        if self._read is None or self._read.shape != shape or self._read.dtype != tables[0].dtype \
+                or self._read.device != flat.device:
+            self._read = torch.empty(shape, dtype=tables[0].dtype, device=flat.device)
+        at = flat.index_select(0, border)
+        penalty, outside = self._read[0].zero_(), self._read[1].zero_()
+        penalty.index_copy_(0, border, tables[0].index_select(0, at))
+        outside.index_copy_(0, border, tables[1].index_select(0, at))
+        return penalty, outside
+
     def rows(self, like: torch.Tensor) -> torch.Tensor:
         """The ``(5, M)`` buffer of the per-sample terms for samples ``like (M,)``, kept
         between calls while ``M`` holds: written in place, no fresh 5 M floats each call."""
@@ -258,7 +311,7 @@ class CanvasLoss(torch.autograd.Function):
     """
 
     @staticmethod
-    def forward(ctx, values, index, layer, terms: CanvasTerms):
+    def forward(ctx, values, index, layer, terms: CanvasTerms, border=None):
         n_layers, size = terms.penalty.shape
         flat = index if layer is None or n_layers == 1 else layer * size + index
         cover = terms.buffer(values)
@@ -266,7 +319,7 @@ class CanvasLoss(torch.autograd.Function):
         total = terms.totals(cover, flat)                                       # T = C + O
         cover.zero_()                                                           # leave the buffer zeroed
         tables = terms.tables()
-        penalty, outside = tables[0].index_select(0, flat), tables[1].index_select(0, flat)
+        penalty, outside = terms.read(flat, border)
         # the fill target is gathered only where some layer has one (open layouts: all 0)
         inside = tables[2].index_select(0, flat) if terms.any_inside else None
         spill = torch.relu(total - 1.0)
@@ -298,4 +351,4 @@ class CanvasLoss(torch.autograd.Function):
     @staticmethod
     def backward(ctx, grad_out):
         (sample_grad,) = ctx.saved_tensors
-        return grad_out * sample_grad, None, None, None
+        return grad_out * sample_grad, None, None, None, None
