@@ -287,3 +287,25 @@ def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers():
 
     for read, full in zip(run(border), run(None)):
         assert torch.equal(read, full)
+
+
+def test_a_patch_overhanging_the_raster_is_read_whole():
+    # a mark larger than the raster: its samples are clamped onto it, it has no origin to
+    # look up, and all of them are read (the summed-area lookups stay in bounds)
+    import numpy as np
+    from unitopia_widget.layout.step.raster import (Planner, RasterGrid, SPRITE_SIDE, render_samples,
+                                                    sprite_pyramid)
+    grid = RasterGrid((10.0, 8.0), 1.0, pad=2)
+    h, w = grid.shape
+    zero = torch.zeros(1, h * w)
+    terms = CanvasTerms(penalty=zero, outside=zero, inside=zero, blocks=torch.zeros(1, 1),
+                        shape=(h, w), norm=9.0)
+    sprite = [sprite_pyramid(np.ones((SPRITE_SIDE, SPRITE_SIDE)), "cpu")]
+    half = np.array([7.0] + [2.0] * 8)
+    plan = Planner(np.zeros(9, int), [SPRITE_SIDE], np.zeros(9, bool), sprite, grid, "cpu").plan_for(half, half)
+    assert sorted(part.overhangs for part in plan.parts) == [False, True]
+    center = torch.tensor([[5.0, 4.0]] + [[2.0 + k, 3.0] for k in range(8)])
+    size = torch.tensor(half, dtype=torch.float32)
+    values, index, owner = render_samples(center, torch.zeros(9), size, size, plan, sprite, grid)
+    border = terms.border(index, plan, torch.zeros(9, dtype=torch.long))
+    assert border.tolist() == torch.nonzero(owner == 0).reshape(-1).tolist()

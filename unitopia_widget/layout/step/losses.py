@@ -227,26 +227,22 @@ class CanvasTerms:
         """``(k,)`` long, ascending: the samples of the marks whose patch meets a pixel where
         its layer's containment penalty or outside share is not 0 (every other sample reads
         0 in both). ``index (M,)`` as ``render_samples`` drew it with ``plan`` (a
-        ``raster.RenderPlan``: its parts' samples come mark by mark, patch origin first);
-        ``layer (N,)`` each unit's layer (long). None where that is over half the samples
-        (reading them all costs less then)."""
-        w, table = self.shape[1], self.border_table
-        picked, start = [], 0
-        for part in plan.parts:
-            n, k = len(part.idx), part.ph * part.pw
-            if part.overhangs:   # samples clamped onto the raster: no patch origin to read
-                picked.append(torch.arange(start, start + n * k, device=index.device))
-            else:
-                first = index[start:start + n * k].view(n, k)[:, 0].long()
-                r0, c0, a = first // w, first % w, layer[part.idx]
-                r1, c1 = r0 + part.ph, c0 + part.pw
-                meets = table[a, r1, c1] - table[a, r0, c1] - table[a, r1, c0] + table[a, r0, c0] > 0
-                marks = torch.nonzero(meets).reshape(-1)
-                picked.append((start + marks[:, None] * k
-                               + torch.arange(k, device=index.device)).reshape(-1))
-            start += n * k
-        border = torch.cat(picked)
-        return border if 2 * len(border) <= start else None
+        ``raster.RenderPlan``, see its ``patches``); ``layer (N,)`` each unit's layer (long).
+        None where that is over half the samples (reading them all costs less then)."""
+        first, ph, pw, unit, whole = plan.patches
+        (h, w), table = self.shape, self.border_table
+        origin = index.index_select(0, first).long()
+        r0, c0, a = origin // w, origin % w, layer.index_select(0, unit)
+        r1, c1 = (r0 + ph).clamp_(max=h), (c0 + pw).clamp_(max=w)   # bounds only for ``whole``
+        meets = (table[a, r1, c1] - table[a, r0, c1] - table[a, r1, c0] + table[a, r0, c0] > 0) | whole
+        marks = torch.nonzero(meets).reshape(-1)
+        count = (ph * pw).index_select(0, marks)
+        total = int(count.sum())
+        if 2 * total > len(index):
+            return None
+        start = torch.cumsum(count, 0) - count
+        within = torch.arange(total, device=index.device) - torch.repeat_interleave(start, count)
+        return torch.repeat_interleave(first.index_select(0, marks), count) + within
 
     def read(self, flat: torch.Tensor, border: torch.Tensor | None) -> tuple:
         """``(penalty, outside)`` ``(M,)``: the containment penalty and outside share at the
