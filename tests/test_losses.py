@@ -279,13 +279,21 @@ def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers():
     assert meets.tolist() == [True, False, False, True, False, True]
     assert border.tolist() == torch.nonzero(meets[owner]).reshape(-1).tolist()
 
-    def run(at):
+    def run(values, index, at):
         v = values.detach().clone().requires_grad_(True)
         loss = CanvasLoss.apply(v, index, layer[owner], terms, at)
         (grad,) = torch.autograd.grad(loss, v)
         return loss.detach(), grad, terms.sums.clone()
 
-    for read, full in zip(run(border), run(None)):
+    for read, full in zip(run(values, index, border), run(values, index, None)):
+        assert torch.equal(read, full)
+    # the marks move: the rows the last border wrote are cleared, the new border's written
+    run(values, index, border)
+    moved = center + torch.tensor([[15.0, 0.0], [-25.0, 0.0], [0.0, 0.0], [0.0, -20.0], [0.0, 20.0], [0.0, 0.0]])
+    values, index, _ = render_samples(moved, torch.zeros(6), half, half, plan, sprite, grid)
+    again = terms.border(index, plan, layer)
+    assert not torch.equal(again, border)
+    for read, full in zip(run(values, index, again), run(values, index, None)):
         assert torch.equal(read, full)
 
 

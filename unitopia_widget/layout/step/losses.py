@@ -70,7 +70,7 @@ class CanvasTerms:
     _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
     _rows: torch.Tensor | None = None          # (5, M) per-sample terms, see ``rows``
     _onehot: tuple | None = None               # (layer, its one-hot), see ``per_layer``
-    _read: torch.Tensor | None = None          # (2, M) the tables read at the samples, see ``read``
+    _rim: torch.Tensor | None = None           # samples whose rows 1 and 4 may not be 0 (None: any), see ``border_rows``
 
     @functools.cached_property
     def inside_total(self) -> float:
@@ -244,22 +244,24 @@ class CanvasTerms:
         within = torch.arange(total, device=index.device) - torch.repeat_interleave(start, count)
         return torch.repeat_interleave(first.index_select(0, marks), count) + within
 
-    def read(self, flat: torch.Tensor, border: torch.Tensor | None) -> tuple:
-        """``(penalty, outside)`` ``(M,)``: the containment penalty and outside share at the
-        samples' pixels ``flat (M,)``, gathered only at ``border`` (see ``border``; None: at
-        every sample), 0 elsewhere, into a buffer kept between calls."""
-        tables = self.tables()
-        if border is None:
-            return tables[0].index_select(0, flat), tables[1].index_select(0, flat)
-        shape = (2, flat.shape[0])
-        if self._read is None or self._read.shape != shape or self._read.dtype != tables[0].dtype \
-                or self._read.device != flat.device:
-            self._read = torch.empty(shape, dtype=tables[0].dtype, device=flat.device)
-        at = flat.index_select(0, border)
-        penalty, outside = self._read[0].zero_(), self._read[1].zero_()
-        penalty.index_copy_(0, border, tables[0].index_select(0, at))
-        outside.index_copy_(0, border, tables[1].index_select(0, at))
-        return penalty, outside
+    def border_rows(self, rows: torch.Tensor, values: torch.Tensor, flat: torch.Tensor,
+                    border: torch.Tensor) -> torch.Tensor:
+        """Write the outside and containment rows (1 and 4) of ``rows`` (``rows``): values
+        times the outside share and the penalty at ``border`` (see ``border``), 0 at every
+        other sample (where both tables are 0), clearing only the samples the last call
+        wrote. Returns the penalty at ``border`` ``(k,)``; ``values``, ``flat`` ``(M,)``."""
+        if self._rim is None:
+            rows[1].zero_()
+            rows[4].zero_()
+        else:
+            rows[1].index_fill_(0, self._rim, 0.0)
+            rows[4].index_fill_(0, self._rim, 0.0)
+        tables, at = self.tables(), flat.index_select(0, border)
+        v, penalty = values.index_select(0, border), tables[0].index_select(0, at)
+        rows[1].index_copy_(0, border, v * tables[1].index_select(0, at))
+        rows[4].index_copy_(0, border, v * penalty)
+        self._rim = border
+        return penalty
 
     def rows(self, like: torch.Tensor) -> torch.Tensor:
         """The ``(5, M)`` buffer of the per-sample terms for samples ``like (M,)``, kept
@@ -269,6 +271,7 @@ class CanvasTerms:
                 or self._rows.device != like.device:
             # zeros: the covered row stays 0 where no layer has a fill target (never written)
             self._rows = torch.zeros(shape, dtype=like.dtype, device=like.device)
+            self._rim = torch.zeros(0, dtype=torch.long, device=like.device)
         return self._rows
 
     def per_layer(self, rows: torch.Tensor, layer: torch.Tensor | None) -> torch.Tensor:
@@ -315,7 +318,6 @@ class CanvasLoss(torch.autograd.Function):
         total = terms.totals(cover, flat)                                       # T = C + O
         cover.zero_()                                                           # leave the buffer zeroed
         tables = terms.tables()
-        penalty, outside = terms.read(flat, border)
         # the fill target is gathered only where some layer has one (open layouts: all 0)
         inside = tables[2].index_select(0, flat) if terms.any_inside else None
         spill = torch.relu(total - 1.0)
@@ -325,11 +327,16 @@ class CanvasLoss(torch.autograd.Function):
         # written into the kept buffer
         rows = terms.rows(values)
         torch.mul(share, spill, out=rows[0])
-        torch.mul(values, outside, out=rows[1])
+        if border is None:
+            penalty, outside = tables[0].index_select(0, flat), tables[1].index_select(0, flat)
+            torch.mul(values, outside, out=rows[1])
+            torch.mul(values, penalty, out=rows[4])
+            terms._rim = None
+        else:   # both tables are read, and both rows written, at the border's samples alone
+            penalty = terms.border_rows(rows, values, flat, border)
         rows[2].copy_(values)
         if inside is not None:   # without a fill target the covered row stays 0 (``rows``)
             torch.mul(share, inside, out=rows[3]).mul_(total.clamp(max=1.0))
-        torch.mul(values, penalty, out=rows[4])
         sums = terms.per_layer(rows, layer)                                    # (5, L)
         terms.sums = sums[:4].detach()
         gap = terms.inside_total - sums[3].sum()
@@ -337,8 +344,11 @@ class CanvasLoss(torch.autograd.Function):
                 + terms.w_fill * gap) / terms.norm
         # each sample's pixel gradient, divided by the norm; sign() of the spill (1 over full,
         # 0 else) instead of where(): a third of the time on a CPU
-        grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm) \
-            .add_(penalty, alpha=terms.w_contain / terms.norm)
+        grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm)
+        if border is None:
+            grad.add_(penalty, alpha=terms.w_contain / terms.norm)
+        else:   # 0 penalty elsewhere adds nothing
+            grad.index_copy_(0, border, grad.index_select(0, border).add_(penalty, alpha=terms.w_contain / terms.norm))
         if terms.w_fill and inside is not None:   # with no fill target the term adds 0
             grad.addcmul_(inside, torch.sign((1.0 - total).clamp_min_(0.0)), value=-terms.w_fill / terms.norm)
         ctx.save_for_backward(grad)
