@@ -91,13 +91,20 @@ def test_a_newer_drag_supersedes_the_running_reflow_and_nothing_queues(laid, mon
     chart, real = w._chart, w._chart.layout
     started, release, runs = threading.Event(), threading.Event(), []
 
-    def layout(**kwargs):              # the first run waits while nine more messages arrive
+    def layout(on_frame, **kwargs):    # the first run waits while nine more messages arrive
         runs.append(float(chart.pinned.x.iloc[0]))
         if len(runs) == 1:
             started.set()
             assert release.wait(30)
-        placements = real(**kwargs)
-        runs[-1] = (runs[-1], chart.result.cancelled or chart.result.iterations <= DRAG_STEPS)
+        frames = []                    # a run may end only once it offered DRAG_STEPS frames
+
+        def offered(*frame):
+            frames.append(1)
+            on_frame(*frame)
+        placements = real(on_frame=offered, **kwargs)
+        # cut short, or over before it could be (a reflow offers a frame a round of steps,
+        # and its last)
+        runs[-1] = (runs[-1], chart.result.cancelled or len(frames) <= DRAG_STEPS + 1)
         return placements
     monkeypatch.setattr(chart, "layout", layout)
     _, moves = path(w, 10)

@@ -247,3 +247,73 @@ def test_the_units_shares_of_the_overlap_add_up_to_each_layers_overlap(blocks):
     per_layer = torch.zeros(3, dtype=D).index_add_(0, unit_layer, per_unit)
     assert torch.allclose(per_layer, terms.sums[0], rtol=1e-12, atol=1e-12)
     assert bool((per_unit > 0).any())
+
+
+def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers():
+    # marks whose patch meets no pixel with a containment penalty or an outside share read
+    # zeros there: the forward gathers both tables only at the others, to the last bit
+    import numpy as np
+    from unitopia_widget.layout.step.raster import (Planner, RasterGrid, SPRITE_SIDE, render_samples,
+                                                    sprite_pyramid)
+    grid = RasterGrid((60.0, 40.0), 1.0, pad=2)
+    h, w = grid.shape
+    g = torch.Generator().manual_seed(3)
+    rim = torch.zeros(2, h, w)
+    rim[0, :, :8], rim[1, 30:, :] = 1.0, 1.0            # layer 0: a left band, layer 1: the bottom
+    penalty = (rim * torch.rand(2, h, w, generator=g)).reshape(2, -1)
+    outside = (rim * torch.rand(2, h, w, generator=g)).reshape(2, -1)
+    terms = CanvasTerms(penalty=penalty, outside=outside, inside=torch.zeros(2, h * w),
+                        blocks=torch.zeros(2, 2), shape=(h, w), w_contain=0.7, norm=50.0)
+    center = torch.tensor([[5.0, 20.0], [30.0, 20.0], [50.0, 10.0], [30.0, 34.0], [45.0, 12.0],
+                           [12.0, 36.0]])
+    layer = torch.tensor([0, 0, 0, 1, 1, 1])
+    sprite = [sprite_pyramid(np.ones((SPRITE_SIDE, SPRITE_SIDE)), "cpu")]
+    plan = Planner(np.zeros(6, int), [SPRITE_SIDE], np.zeros(6, bool), sprite, grid,
+                   "cpu").plan_for(np.full(6, 3.0), np.full(6, 3.0))
+    half = torch.full((6,), 3.0)
+    values, index, owner = render_samples(center, torch.zeros(6), half, half, plan, sprite, grid)
+    border = terms.border(index, plan, layer)
+    flat = index.long() + layer[owner] * h * w
+    meets = torch.zeros(6, dtype=torch.bool).index_put_((owner,), (penalty.reshape(-1)[flat] != 0)
+                                                        | (outside.reshape(-1)[flat] != 0), accumulate=True)
+    assert meets.tolist() == [True, False, False, True, False, True]
+    assert border.tolist() == torch.nonzero(meets[owner]).reshape(-1).tolist()
+
+    def run(values, index, at):
+        v = values.detach().clone().requires_grad_(True)
+        loss = CanvasLoss.apply(v, index, layer[owner], terms, at)
+        (grad,) = torch.autograd.grad(loss, v)
+        return loss.detach(), grad, terms.sums.clone()
+
+    for read, full in zip(run(values, index, border), run(values, index, None)):
+        assert torch.equal(read, full)
+    # the marks move: the rows the last border wrote are cleared, the new border's written
+    run(values, index, border)
+    moved = center + torch.tensor([[15.0, 0.0], [-25.0, 0.0], [0.0, 0.0], [0.0, -20.0], [0.0, 20.0], [0.0, 0.0]])
+    values, index, _ = render_samples(moved, torch.zeros(6), half, half, plan, sprite, grid)
+    again = terms.border(index, plan, layer)
+    assert not torch.equal(again, border)
+    for read, full in zip(run(values, index, again), run(values, index, None)):
+        assert torch.equal(read, full)
+
+
+def test_a_patch_overhanging_the_raster_is_read_whole():
+    # a mark larger than the raster: its samples are clamped onto it, it has no origin to
+    # look up, and all of them are read (the summed-area lookups stay in bounds)
+    import numpy as np
+    from unitopia_widget.layout.step.raster import (Planner, RasterGrid, SPRITE_SIDE, render_samples,
+                                                    sprite_pyramid)
+    grid = RasterGrid((10.0, 8.0), 1.0, pad=2)
+    h, w = grid.shape
+    zero = torch.zeros(1, h * w)
+    terms = CanvasTerms(penalty=zero, outside=zero, inside=zero, blocks=torch.zeros(1, 1),
+                        shape=(h, w), norm=9.0)
+    sprite = [sprite_pyramid(np.ones((SPRITE_SIDE, SPRITE_SIDE)), "cpu")]
+    half = np.array([7.0] + [2.0] * 8)
+    plan = Planner(np.zeros(9, int), [SPRITE_SIDE], np.zeros(9, bool), sprite, grid, "cpu").plan_for(half, half)
+    assert sorted(part.overhangs for part in plan.parts) == [False, True]
+    center = torch.tensor([[5.0, 4.0]] + [[2.0 + k, 3.0] for k in range(8)])
+    size = torch.tensor(half, dtype=torch.float32)
+    values, index, owner = render_samples(center, torch.zeros(9), size, size, plan, sprite, grid)
+    border = terms.border(index, plan, torch.zeros(9, dtype=torch.long))
+    assert border.tolist() == torch.nonzero(owner == 0).reshape(-1).tolist()

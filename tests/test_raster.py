@@ -310,6 +310,32 @@ def test_render_samples_gradcheck_in_float64():
     assert torch.autograd.gradcheck(values, (center, angle, half_w, half_h), eps=1e-6, atol=1e-6)
 
 
+def test_patch_coords_reduced_backward_against_finite_differences():
+    """The coordinates of a large part (``REDUCE_FROM`` samples or more) go backward reduced
+    once per mark: its gradients for the shift and all four scale factors, and its forward
+    equal to autograd's graph."""
+    from unitopia_widget.layout.step.raster import PatchCoords, sprite_coords
+    g = torch.Generator().manual_seed(4)
+    shift = (-5 * torch.rand(3, 2, generator=g, dtype=torch.float64)).requires_grad_()
+    a, b, d, e = (torch.rand(3, generator=g, dtype=torch.float64).requires_grad_() for _ in range(4))
+    u, v = torch.arange(6, dtype=torch.float64) + 0.5, torch.arange(4, dtype=torch.float64) + 0.5
+    out = PatchCoords.apply(shift, a, b, d, e, u, v)
+    assert out.shape == (2, 3, 4, 6)
+    assert torch.equal(out, torch.stack(sprite_coords(shift, a, b, d, e, u, v)))
+    # as grid_sample hands the gradient back: a permuted view of an interleaved tensor
+    weights = torch.rand(3, 4, 6, 2, generator=g, dtype=torch.float64)
+
+    def weighted(*args):
+        return (PatchCoords.apply(*args, u, v).permute(1, 2, 3, 0) * weights).sum()
+
+    assert torch.autograd.gradcheck(weighted, (shift, a, b, d, e))
+    # a mark that neither turns nor grows (the scale factors without gradients): the same shift's
+    (full,) = torch.autograd.grad(weighted(shift, a, b, d, e), shift)
+    alone = shift.detach().clone().requires_grad_()
+    (part,) = torch.autograd.grad(weighted(alone, *(k.detach() for k in (a, b, d, e))), alone)
+    assert torch.equal(part, full)
+
+
 def _sun(width):
     t = np.linspace(0, 2 * np.pi, 40)
     rays = [np.array([[50 + 24 * np.cos(a), 50 + 24 * np.sin(a)], [50 + 40 * np.cos(a), 50 + 40 * np.sin(a)]])

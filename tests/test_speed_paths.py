@@ -71,6 +71,34 @@ def test_planner_reuses_its_plan_until_a_mark_changes_group():
     assert grown.owner.tolist() == expected
 
 
+def test_planner_reads_no_group_for_footprints_it_was_last_asked(monkeypatch):
+    # scales that did not move: the plan is handed back without a group key computed
+    from unitopia_widget.layout.step import raster
+    grid = RasterGrid((200.0, 200.0), 1.0, pad=2)
+    planner = Planner(np.zeros(3, int), [SPRITE_SIDE], np.zeros(3, bool), [None], grid, "cpu")
+    half = np.array([3.3, 5.5, 5.5])
+    first = planner.plan_for(half, half)
+    calls, keys = [], raster.group_keys
+    monkeypatch.setattr(raster, "group_keys", lambda *a, **k: calls.append(1) or keys(*a, **k))
+    assert planner.plan_for(np.array([3.3, 5.5, 5.5]), half.copy()) is first
+    assert calls == []
+    half[0] = 3.4   # the caller's array changed in place: the planner kept its own copy
+    assert planner.plan_for(half, half) is first and calls == [1]
+
+
+def test_a_second_layout_of_the_same_container_reuses_its_fields():
+    # the coverage and distance transform are made once per container, raster and falloff
+    from unitopia_widget.layout.prepare import assemble
+    grid = RasterGrid((120.0, 90.0), 1.5, pad=2)
+    box = uw.Container.ellipse(60, 45, 40, 30)
+    first = assemble._fields(box, grid, 4.0)
+    again = assemble._fields(uw.Container.ellipse(60, 45, 40, 30), grid, 4.0)
+    assert all(a is b for a, b in zip(first, again))
+    other = assemble._fields(uw.Container.ellipse(60, 45, 40, 31), grid, 4.0)
+    assert not torch.equal(other[0], first[0])
+    assert assemble._fields(box, grid, 5.0)[2] is not first[2]          # another falloff
+
+
 def test_snap_rho_fits_marks_just_over_a_patch_step_into_it():
     # a 16.1 px patch at rho = 1 pays 20 x 20 samples; 0.99 x rho fits 16 x 16
     half = np.full(50, 7.05)

@@ -111,7 +111,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
             plan = planner.current
             sample_layer = layer_t[plan.owner] if n_layers > 1 else None
         values, index, owner = render_samples(center, angle, hw, hh, plan, p.pyramids, p.grid)
-        loss = CanvasLoss.apply(values, index, sample_layer, p.terms)
+        # the containment tables are read only at the marks whose patch meets the border
+        loss = CanvasLoss.apply(values, index, sample_layer, p.terms, p.terms.border(index, plan, layer_t))
         if s.phase == "polish":   # legalising rounds: no force presses the marks together
             weight = steps.force_weight * steps.polish_force * (s.rounds == 0)
         else:   # a strong pull carries marks through jams; a gentle one lets piles settle

@@ -188,7 +188,22 @@ def room_reach(units: Units) -> np.ndarray:
     return np.maximum(np.sqrt(units.area / math.pi) - seen, 0.0)
 
 
+_FIELDS: dict = {}   # (container JSON text, canvas, rho, pad, falloff) -> fields, the last few made
+FIELDS_KEPT = 2
+
+
 def _fields(container, grid: RasterGrid, falloff: float):
-    cov = container.coverage(grid.canvas, grid.rho)
-    inside, outside, penalty = region_fields(cov, grid, falloff)
-    return tuple(torch.from_numpy(a).reshape(-1) for a in (inside, outside, penalty))
+    """``(inside, outside, penalty)`` of ``container`` (``fields.region_fields``), flat
+    ``(S,)`` tensors, made once per (container JSON, raster, falloff) among the last
+    ``FIELDS_KEPT`` asked for, as ``lattice.container_region`` keeps regions: a second layout
+    of the same container and marks skips the coverage and the distance transform (the terms
+    copy the fields, which are only read)."""
+    key = (repr(container.to_json()), tuple(grid.canvas), float(grid.rho), grid.pad, float(falloff))
+    fields = _FIELDS.pop(key, None)
+    if fields is None:
+        cov = container.coverage(grid.canvas, grid.rho)
+        fields = tuple(torch.from_numpy(a).reshape(-1) for a in region_fields(cov, grid, falloff))
+    _FIELDS[key] = fields
+    while len(_FIELDS) > FIELDS_KEPT:
+        del _FIELDS[next(iter(_FIELDS))]
+    return fields

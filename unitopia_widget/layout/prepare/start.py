@@ -26,7 +26,7 @@ from ...design.forces import potential
 from ...design.scene import random_range
 from ..step.placement import DRIFT_DECAY
 from ..step.strata import Radial, shadow, shadow_distance, sweep_of
-from .lattice import Region, fitting_lattice, grid_spacing
+from .lattice import Region, container_region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
@@ -67,7 +67,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         key = repr(container.to_json())
         if key not in regions:
             try:
-                regions[key] = Region(container.coverage(canvas, grid.rho), grid.rho)
+                regions[key] = container_region(container, canvas, grid.rho)
             except ValueError as exc:
                 raise ValueError(f"layer {layer.name!r}: {exc}") from None
             taken[key] = (np.zeros((0, 2)), np.zeros(0))

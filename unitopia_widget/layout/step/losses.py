@@ -70,6 +70,7 @@ class CanvasTerms:
     _tables: tuple | None = None               # fixed per-pixel tables, see ``tables``
     _rows: torch.Tensor | None = None          # (5, M) per-sample terms, see ``rows``
     _onehot: tuple | None = None               # (layer, its one-hot), see ``per_layer``
+    _rim: torch.Tensor | None = None           # samples whose rows 1 and 4 may not be 0 (None: any), see ``border_rows``
 
     @functools.cached_property
     def inside_total(self) -> float:
@@ -212,13 +213,65 @@ class CanvasTerms:
                                  for t in (self.penalty, self.outside, self.inside))
         return self._tables
 
+    @functools.cached_property
+    def border_table(self) -> torch.Tensor:
+        """``(L, H + 1, W + 1)`` int32: the summed-area table of each layer's pixels where
+        the containment penalty or the outside share is not 0 (made once: both are fixed)."""
+        h, w = self.shape
+        rim = ((self.penalty != 0) | (self.outside != 0)).view(-1, h, w).to(torch.int32)
+        table = torch.zeros(rim.shape[0], h + 1, w + 1, dtype=torch.int32, device=rim.device)
+        table[:, 1:, 1:] = rim.cumsum(1, dtype=torch.int32).cumsum(2, dtype=torch.int32)
+        return table
+
+    def border(self, index: torch.Tensor, plan, layer: torch.Tensor) -> torch.Tensor | None:
+        """``(k,)`` long, ascending: the samples of the marks whose patch meets a pixel where
+        its layer's containment penalty or outside share is not 0 (every other sample reads
+        0 in both). ``index (M,)`` as ``render_samples`` drew it with ``plan`` (a
+        ``raster.RenderPlan``, see its ``patches``); ``layer (N,)`` each unit's layer (long).
+        None where that is over half the samples (reading them all costs less then)."""
+        first, ph, pw, unit, whole = plan.patches
+        (h, w), table = self.shape, self.border_table
+        origin = index.index_select(0, first).long()
+        r0, c0, a = origin // w, origin % w, layer.index_select(0, unit)
+        r1, c1 = (r0 + ph).clamp_(max=h), (c0 + pw).clamp_(max=w)   # bounds only for ``whole``
+        meets = (table[a, r1, c1] - table[a, r0, c1] - table[a, r1, c0] + table[a, r0, c0] > 0) | whole
+        marks = torch.nonzero(meets).reshape(-1)
+        count = (ph * pw).index_select(0, marks)
+        total = int(count.sum())
+        if 2 * total > len(index):
+            return None
+        start = torch.cumsum(count, 0) - count
+        within = torch.arange(total, device=index.device) - torch.repeat_interleave(start, count)
+        return torch.repeat_interleave(first.index_select(0, marks), count) + within
+
+    def border_rows(self, rows: torch.Tensor, values: torch.Tensor, flat: torch.Tensor,
+                    border: torch.Tensor) -> torch.Tensor:
+        """Write the outside and containment rows (1 and 4) of ``rows`` (``rows``): values
+        times the outside share and the penalty at ``border`` (see ``border``), 0 at every
+        other sample (where both tables are 0), clearing only the samples the last call
+        wrote. Returns the penalty at ``border`` ``(k,)``; ``values``, ``flat`` ``(M,)``."""
+        if self._rim is None:
+            rows[1].zero_()
+            rows[4].zero_()
+        else:
+            rows[1].index_fill_(0, self._rim, 0.0)
+            rows[4].index_fill_(0, self._rim, 0.0)
+        tables, at = self.tables(), flat.index_select(0, border)
+        v, penalty = values.index_select(0, border), tables[0].index_select(0, at)
+        rows[1].index_copy_(0, border, v * tables[1].index_select(0, at))
+        rows[4].index_copy_(0, border, v * penalty)
+        self._rim = border
+        return penalty
+
     def rows(self, like: torch.Tensor) -> torch.Tensor:
         """The ``(5, M)`` buffer of the per-sample terms for samples ``like (M,)``, kept
         between calls while ``M`` holds: written in place, no fresh 5 M floats each call."""
         shape = (5, like.shape[0])
         if self._rows is None or self._rows.shape != shape or self._rows.dtype != like.dtype \
                 or self._rows.device != like.device:
-            self._rows = torch.empty(shape, dtype=like.dtype, device=like.device)
+            # zeros: the covered row stays 0 where no layer has a fill target (never written)
+            self._rows = torch.zeros(shape, dtype=like.dtype, device=like.device)
+            self._rim = torch.zeros(0, dtype=torch.long, device=like.device)
         return self._rows
 
     def per_layer(self, rows: torch.Tensor, layer: torch.Tensor | None) -> torch.Tensor:
@@ -257,7 +310,7 @@ class CanvasLoss(torch.autograd.Function):
     """
 
     @staticmethod
-    def forward(ctx, values, index, layer, terms: CanvasTerms):
+    def forward(ctx, values, index, layer, terms: CanvasTerms, border=None):
         n_layers, size = terms.penalty.shape
         flat = index if layer is None or n_layers == 1 else layer * size + index
         cover = terms.buffer(values)
@@ -265,7 +318,6 @@ class CanvasLoss(torch.autograd.Function):
         total = terms.totals(cover, flat)                                       # T = C + O
         cover.zero_()                                                           # leave the buffer zeroed
         tables = terms.tables()
-        penalty, outside = tables[0].index_select(0, flat), tables[1].index_select(0, flat)
         # the fill target is gathered only where some layer has one (open layouts: all 0)
         inside = tables[2].index_select(0, flat) if terms.any_inside else None
         spill = torch.relu(total - 1.0)
@@ -275,13 +327,16 @@ class CanvasLoss(torch.autograd.Function):
         # written into the kept buffer
         rows = terms.rows(values)
         torch.mul(share, spill, out=rows[0])
-        torch.mul(values, outside, out=rows[1])
+        if border is None:
+            penalty, outside = tables[0].index_select(0, flat), tables[1].index_select(0, flat)
+            torch.mul(values, outside, out=rows[1])
+            torch.mul(values, penalty, out=rows[4])
+            terms._rim = None
+        else:   # both tables are read, and both rows written, at the border's samples alone
+            penalty = terms.border_rows(rows, values, flat, border)
         rows[2].copy_(values)
-        if inside is None:   # no fill target: nothing covered (0 at every sample)
-            rows[3].zero_()
-        else:
+        if inside is not None:   # without a fill target the covered row stays 0 (``rows``)
             torch.mul(share, inside, out=rows[3]).mul_(total.clamp(max=1.0))
-        torch.mul(values, penalty, out=rows[4])
         sums = terms.per_layer(rows, layer)                                    # (5, L)
         terms.sums = sums[:4].detach()
         gap = terms.inside_total - sums[3].sum()
@@ -289,8 +344,11 @@ class CanvasLoss(torch.autograd.Function):
                 + terms.w_fill * gap) / terms.norm
         # each sample's pixel gradient, divided by the norm; sign() of the spill (1 over full,
         # 0 else) instead of where(): a third of the time on a CPU
-        grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm) \
-            .add_(penalty, alpha=terms.w_contain / terms.norm)
+        grad = torch.sign(spill).mul_(terms.w_overlap / terms.norm)
+        if border is None:
+            grad.add_(penalty, alpha=terms.w_contain / terms.norm)
+        else:   # 0 penalty elsewhere adds nothing
+            grad.index_copy_(0, border, grad.index_select(0, border).add_(penalty, alpha=terms.w_contain / terms.norm))
         if terms.w_fill and inside is not None:   # with no fill target the term adds 0
             grad.addcmul_(inside, torch.sign((1.0 - total).clamp_min_(0.0)), value=-terms.w_fill / terms.norm)
         ctx.save_for_backward(grad)
@@ -299,4 +357,4 @@ class CanvasLoss(torch.autograd.Function):
     @staticmethod
     def backward(ctx, grad_out):
         (sample_grad,) = ctx.saved_tensors
-        return grad_out * sample_grad, None, None, None
+        return grad_out * sample_grad, None, None, None, None

@@ -22,6 +22,7 @@ flat raster index, ready for ``index_add_``.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -33,6 +34,10 @@ import torch.nn.functional as F
 PATCH_SIDES = (4, 6, 8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48, 56, 64, 80, 96,
                112, 128, 160, 192, 224, 256, 320, 384, 448, 512, 640, 768, 1024)
 SPRITE_SIDE = 256  # long side of the finest sprite level, texels
+#: Samples in a part from which its coordinates' backward is reduced once per mark
+#: (``PatchCoords``): there the full-size passes of autograd's graph cost a tenth of an
+#: iteration; smaller parts keep that graph, and their layouts their placements to the digit.
+REDUCE_FROM = 65_536
 
 
 def sprite_pyramid(alpha: np.ndarray, device, dtype=torch.float32,
@@ -216,6 +221,23 @@ class RenderPlan:
                                     device, width, height))
         self.owner = torch.cat([part.idx.repeat_interleave(part.ph * part.pw) for part in self.parts])
 
+    @functools.cached_property
+    def patches(self) -> tuple:
+        """``(first, ph, pw, unit, whole)``, each ``(K,)`` over the plan's marks in render
+        order: the sample its patch starts with (its origin pixel, unless ``whole``: a patch
+        overhanging the raster, whose samples are clamped onto it), its patch rows and
+        columns, and its unit."""
+        sizes = [(part.ph, part.pw, len(part.idx), part.overhangs) for part in self.parts]
+        dev = self.owner.device
+        count = torch.tensor([ph * pw for ph, pw, n, _ in sizes for _ in range(n)], device=dev)
+        first = torch.cumsum(count, 0) - count
+        ph = torch.tensor([ph for ph, _, n, _ in sizes for _ in range(n)], device=dev)
+        pw = torch.tensor([pw for _, pw, n, _ in sizes for _ in range(n)], device=dev)
+        whole = torch.tensor([over for *_, n, over in sizes for _ in range(n)], device=dev,
+                             dtype=torch.bool)
+        unit = torch.cat([part.idx for part in self.parts])
+        return first, ph, pw, unit, whole
+
 
 class _Part:
     """One ``grid_sample`` call: its marks ``idx (n,)``, sprite, level and patch ``(ph, pw)``,
@@ -243,16 +265,70 @@ class Planner:
                  sprite_aspects=None):
         self.args = (sprite_ids, sprite_sides, rotating, sprite_aspects)
         self.pyramids, self.grid, self.device = pyramids, grid, device
-        self.keys, self.current = None, None
+        self.keys, self.current, self.last = None, None, None
 
     def plan_for(self, half_w: np.ndarray, half_h: np.ndarray) -> RenderPlan:
-        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays)."""
+        """The plan for footprints ``half_w``, ``half_h`` ``(N,)`` canvas px (host arrays);
+        footprints equal to the last call's (scales that did not move) keep it unchecked."""
+        if self.last is not None and np.array_equal(half_w, self.last[0]) \
+                and np.array_equal(half_h, self.last[1]):
+            return self.current
+        self.last = (np.array(half_w), np.array(half_h))
         sprite_ids, sides, rotating, aspects = self.args
         keys = group_keys(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, aspects)
         if self.keys is None or not np.array_equal(keys, self.keys):
             groups = plan_groups(half_w, half_h, sprite_ids, sides, rotating, self.grid.rho, keys)
             self.keys, self.current = keys, RenderPlan(groups, self.pyramids, self.device, self.grid)
         return self.current
+
+
+def sprite_coords(shift, a, b, d, e, u, v, out=None) -> tuple:
+    """``(gx, gy)`` ``(n, ph, pw)``: the sprite coordinates of ``PatchCoords`` (see there for
+    the arguments) through autograd's own graph; with ``out`` ``(2, n, ph, pw)``, written
+    into it, and ``(dx (n, 1, pw), dy (n, ph, 1))`` returned instead."""
+    dx = (shift[:, 0:1] + u)[:, None, :]                                    # (n, 1, pw)
+    dy = (shift[:, 1:2] + v)[:, :, None]                                    # (n, ph, 1)
+    # the (n, 1, pw) and (n, ph, 1) factors are small: one full-size operation a coordinate
+    a, b, d, e = (k[:, None, None] for k in (a, b, d, e))
+    if out is None:
+        return dx * a + dy * b, dy * d - dx * e
+    torch.add(dx * a, dy * b, out=out[0])
+    torch.sub(dy * d, dx * e, out=out[1])
+    return dx, dy
+
+
+class PatchCoords(torch.autograd.Function):
+    """``PatchCoords.apply(shift, a, b, d, e, u, v)`` -> ``(2, n, ph, pw)``: the sprite
+    coordinates of a part's samples, ``gx = dx a + dy b`` and ``gy = dy d - dx e`` with
+    ``dx = shift_x + u``, ``dy = shift_y + v`` (raster px from each mark's centre), written
+    in front of each other as ``grid_sample`` reads them.
+
+    ``shift (n, 2)`` raster px from each centre to its patch origin; ``a, b, d, e (n,)``
+    the mark's cos / sx, sin / sx, cos / sy, sin / sy (sx, sy its half extents in raster
+    px); ``u (pw,)``, ``v (ph,)`` the sample points (constants). The backward reduces the
+    coordinates' gradient once per mark: a shift moves every sample of the mark alike,
+    where autograd made and summed a full-size product per term."""
+
+    @staticmethod
+    def forward(ctx, shift, a, b, d, e, u, v):
+        out = shift.new_empty(2, len(shift), len(v), len(u))
+        dx, dy = sprite_coords(shift, a, b, d, e, u, v, out=out)
+        ctx.save_for_backward(dx[:, 0], dy[:, :, 0], a, b, d, e)
+        return out
+
+    @staticmethod
+    def backward(ctx, grad):
+        dx, dy, a, b, d, e = ctx.saved_tensors
+        g = grad.permute(1, 2, 3, 0)                      # (n, ph, pw, 2), as grid_sample wrote it
+        total = g.reshape(len(dx), -1, 2).sum(1)          # (n, 2): each mark's sums of d/dgx, d/dgy
+        gx, gy = total[:, 0], total[:, 1]
+        shift = torch.stack([a * gx - e * gy, b * gx + d * gy], 1) if ctx.needs_input_grad[0] else None
+        da = db = dd = de = None
+        if any(ctx.needs_input_grad[1:5]):   # a turning or growing mark: weighted by dx, dy
+            cols, rows = g.sum(1), g.sum(2)               # (n, pw, 2), (n, ph, 2)
+            da, de = (cols[..., 0] * dx).sum(1), -(cols[..., 1] * dx).sum(1)
+            db, dd = (rows[..., 0] * dy).sum(1), (rows[..., 1] * dy).sum(1)
+        return shift, da, db, dd, de, None, None
 
 
 def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tensor,
@@ -278,20 +354,19 @@ def render_samples(center: torch.Tensor, angle: torch.Tensor, half_w: torch.Tens
         # patches stay on the raster; a mark beyond the border is cut off there
         origin = torch.minimum(torch.clamp(torch.floor(c.detach() - part.size / 2), min=0), part.limit)
         shift = origin - c
-        dx = (shift[:, 0:1] + part.u)[:, None, :]                          # (n, 1, pw)
-        dy = (shift[:, 1:2] + part.v)[:, :, None]                          # (n, ph, 1)
-        cos, sin = cos_all[idx][:, None, None], sin_all[idx][:, None, None]
-        sx = (rho * half_w[idx])[:, None, None]
-        sy = (rho * half_h[idx])[:, None, None]
-        # sprite coordinates in [-1, 1]; the (n, 1, pw) and (n, ph, 1) factors are small, so
-        # each coordinate costs one full-size operation
-        gx = dx * (cos / sx) + dy * (sin / sx)                             # (n, ph, pw)
-        gy = dy * (cos / sy) - dx * (sin / sy)
+        cos, sin = cos_all[idx], sin_all[idx]
+        sx, sy = rho * half_w[idx], rho * half_h[idx]
+        # sprite coordinates in [-1, 1]
+        scales = (cos / sx, sin / sx, cos / sy, sin / sy)
         if plan.atlas is None:
-            # stacked in front and viewed as (n, ph, pw, 2): grid_sample reads strided grids,
-            # and interleaving the two coordinates in memory would cost more than the sampling
-            sprite, sample_grid = pyramids[part.sprite][part.level], torch.stack([gx, gy]).permute(1, 2, 3, 0)
-        else:   # part.sprite: (n,) the sprite of each mark, tiles of one texture
+            # (2, n, ph, pw) viewed as (n, ph, pw, 2): grid_sample reads strided grids, and
+            # interleaving the two coordinates in memory would cost more than the sampling
+            coords = PatchCoords.apply(shift, *scales, part.u, part.v) if len(idx) * ph * pw >= REDUCE_FROM \
+                else torch.stack(sprite_coords(shift, *scales, part.u, part.v))
+            sprite, sample_grid = pyramids[part.sprite][part.level], coords.permute(1, 2, 3, 0)
+        else:   # part.sprite: (n,) the sprite of each mark, tiles of one texture, each
+            # coordinate mapped on its own (autograd's graph: no stacked gradient to split)
+            gx, gy = sprite_coords(shift, *scales, part.u, part.v)
             sprite, sample_grid = plan.atlas.grid(part.level, part.sprite, gx, gy)
         alpha = F.grid_sample(sprite, sample_grid.reshape(1, -1, pw // part.stride, 2),
                               mode="bilinear", padding_mode="zeros",
