@@ -264,24 +264,6 @@ def test_the_settle_counts_a_loss_no_better_by_a_thousandth_of_its_size_as_no_im
     assert s.best == sign * 1.0 - 5e-3
 
 
-def test_the_polish_decays_at_double_pace_while_the_layout_is_legal():
-    # a legal layout's step counts for two polishing iterations: the steps still decay to
-    # nothing, in fewer iterations; an overlap or a poke out above legalize's bound slows it
-    from unitopia_widget.layout.rules.decay import Decay
-    optimizer = SimpleNamespace(param_groups=[{"lr": 1.0}])
-    s = SimpleNamespace(polish_left=60, base_lrs=[1.0], optimizer=optimizer, steps=Steps(),
-                        overlap_g=np.array([0.0005, 0.0]), outside_g=np.array([0.0, 0.0009]))
-    Decay()(s)
-    assert s.polish_left == 58 and optimizer.param_groups[0]["lr"] == pytest.approx(58 / 60)
-    for over, out in (([0.0005, 0.002], [0.0, 0.0]), ([0.0, 0.0], [0.0015, 0.0])):
-        s.overlap_g, s.outside_g = np.array(over), np.array(out)
-        Decay()(s)
-    assert s.polish_left == 56
-    s.overlap_g = s.outside_g = None   # no reading yet: the plain pace
-    Decay()(s)
-    assert s.polish_left == 55
-
-
 def _settling_pile(n):
     """A pile of ``n`` marks under a downward pull, as ``Rest`` and ``StartPolish`` see it,
     at the start of a window; no mark touches another at the samples. ``window(s, dy)``
