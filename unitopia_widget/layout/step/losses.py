@@ -348,7 +348,7 @@ class CanvasLoss(torch.autograd.Function):
         if border is None:
             grad.add_(penalty, alpha=terms.w_contain / terms.norm)
         else:   # 0 penalty elsewhere adds nothing
-            grad.index_copy_(0, border, grad.index_select(0, border).add_(penalty, alpha=terms.w_contain / terms.norm))
+            grad.index_add_(0, border, penalty, alpha=terms.w_contain / terms.norm)
         if terms.w_fill and inside is not None:   # with no fill target the term adds 0
             grad.addcmul_(inside, torch.sign((1.0 - total).clamp_min_(0.0)), value=-terms.w_fill / terms.norm)
         ctx.save_for_backward(grad)
