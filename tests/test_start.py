@@ -199,7 +199,7 @@ def test_unequal_sizes_settle_in_about_as_many_iterations_as_equal_ones():
     equal, _ = settle(np.ones(200))
     unequal, dent = settle(np.random.default_rng(0).uniform(1, 10, 200))
     # the settle's iterations: 49 against 32 (the lattice start took 54 more in all); the
-    # polish is not compared: equal discs, which the raster resolves, end it at double pace
+    # polish is not compared: equal discs, which the raster resolves, end it faster
     assert unequal <= equal + 25
     assert dent < 0.15, dent              # the deepest overlap, in smallest radii: under a raster px
 
