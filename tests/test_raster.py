@@ -350,6 +350,24 @@ def test_line_drawings_are_thin_and_filled_shapes_are_not():
         assert not is_thin(uw.Mark.shape(name).silhouette(256)), name
 
 
+def test_is_thin_opens_by_the_disc_as_a_morphological_opening_does():
+    # is_thin opens through distance transforms; the answer is the opening's by the disc of
+    # the stroke's radius, on shapes of either answer and at the image's border
+    from scipy import ndimage
+    from unitopia_widget.layout.step.raster import is_thin
+    rng, answers = np.random.default_rng(3), []
+    for _ in range(24):
+        h, w = (int(k) for k in rng.integers(30, 200, 2))
+        field = ndimage.gaussian_filter(rng.random((h, w)), float(rng.uniform(0.8, 6.0)))
+        alpha = (field > np.quantile(field, rng.uniform(0.3, 0.9))).astype(np.float32)
+        ink, r = alpha >= 0.5, max(1, int(round(0.1 * max(h, w) / 2)))
+        yy, xx = np.mgrid[-r:r + 1, -r:r + 1]
+        opened = ndimage.binary_opening(ink, structure=(xx ** 2 + yy ** 2) <= r * r)
+        answers.append(bool(opened.sum() < 0.5 * max(ink.sum(), 1)))
+        assert is_thin(alpha) == answers[-1]
+    assert True in answers and False in answers
+
+
 def test_keep_thin_keeps_a_one_texel_line_opaque_on_every_level():
     line = np.zeros((256, 256), np.float32)
     line[:, 100] = 1.0

@@ -264,6 +264,47 @@ def test_the_settle_counts_a_loss_no_better_by_a_thousandth_of_its_size_as_no_im
     assert s.best == sign * 1.0 - 5e-3
 
 
+def test_a_resolved_legal_polish_decays_faster_and_any_other_at_the_plain_pace():
+    # where the raster resolves every contact, a legal layout's step counts for legal_pace
+    # polishing iterations: the steps still decay to nothing, in fewer iterations; an
+    # overlap or a poke out above legalize's bound, or marks the raster does not resolve,
+    # keep the plain pace
+    from unitopia_widget.layout.rules.decay import Decay, DecaySettings
+    pace = DecaySettings().legal_pace
+    assert pace > 1
+    optimizer = SimpleNamespace(param_groups=[{"lr": 1.0}])
+    s = SimpleNamespace(polish_left=60, base_lrs=[1.0], optimizer=optimizer, steps=Steps(),
+                        p=SimpleNamespace(resolved=True),
+                        overlap_g=np.array([0.0005, 0.0]), outside_g=np.array([0.0, 0.0009]))
+    Decay()(s)
+    assert s.polish_left == 60 - pace
+    assert optimizer.param_groups[0]["lr"] == pytest.approx((60 - pace) / 60)
+    for over, out in (([0.0005, 0.002], [0.0, 0.0]), ([0.0, 0.0], [0.0015, 0.0])):
+        s.overlap_g, s.outside_g = np.array(over), np.array(out)
+        Decay()(s)
+    assert s.polish_left == 58 - pace
+    s.overlap_g = s.outside_g = None   # no reading yet: the plain pace
+    Decay()(s)
+    assert s.polish_left == 57 - pace
+    s.overlap_g, s.outside_g, s.p.resolved = np.zeros(2), np.zeros(2), False
+    Decay()(s)
+    assert s.polish_left == 56 - pace
+
+
+@pytest.mark.parametrize("mark, resolved", [
+    ("circle", True),
+    (uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><circle cx="5" '
+                 'cy="5" r="4" stroke="black" stroke-width="1" fill="none"/></svg>'), False),
+    (uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 80"><rect width="4" '
+                 'height="80"/></svg>'), False)])
+def test_the_raster_resolves_solid_wide_marks_and_not_rings_or_strands(mark, resolved):
+    # rings touch by their strokes and strands across their width: both are finer than
+    # the raster, whose resolution aims at the marks' mean footprint
+    c = chart(40, mark=mark)
+    units = bind(c.df, c.layers)
+    assert engine.build_problem(units, c.layers, c.canvas, 0, "cpu").resolved is resolved
+
+
 def _settling_pile(n):
     """A pile of ``n`` marks under a downward pull, as ``Rest`` and ``StartPolish`` see it,
     at the start of a window; no mark touches another at the samples. ``window(s, dy)``

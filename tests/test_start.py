@@ -194,13 +194,12 @@ def test_unequal_sizes_settle_in_about_as_many_iterations_as_equal_ones():
                          forces=[uw.PointForce(360, 407)], fill=0.6)
         table = chart.layout()
         gap = disc_gaps(table[["x", "y"]].to_numpy(), table["width"].to_numpy() / 2)
-        return chart.result.iterations, max(-gap.min(), 0.0) / (table["width"].min() / 2)
+        return chart.result.phases["settle"], max(-gap.min(), 0.0) / (table["width"].min() / 2)
 
     equal, _ = settle(np.ones(200))
     unequal, dent = settle(np.random.default_rng(0).uniform(1, 10, 200))
-    # 81 against 63 (before the legal polish's double pace, 109 against 92; the lattice start
-    # took 127 against 73): the extra iterations, not their share of a polish that both
-    # layouts now end sooner
+    # the settle's iterations: 49 against 32 (the lattice start took 54 more in all); the
+    # polish is not compared: equal discs, which the raster resolves, end it faster
     assert unequal <= equal + 25
     assert dent < 0.15, dent              # the deepest overlap, in smallest radii: under a raster px
 

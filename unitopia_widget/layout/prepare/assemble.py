@@ -75,6 +75,10 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     half = np.stack([units.half_w, units.half_h]) * band * unit_scale
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
+    # solid marks this wide on the raster touch by more than its pixels: the raster reads
+    # every contact (thin marks, rings' strokes and a capped raster's marks are narrower)
+    across = 2 * np.minimum(units.half_w, units.half_h) * unit_scale * grid.rho
+    resolved = bool((units.ink_share >= 1.0).all() and (across >= TARGET_RADIUS).all())
     dev = torch.device(device)
     generator = torch.Generator().manual_seed(int(seed))
     start = start_positions(units, layers, order, canvas, unit_scale, grid, generator)
@@ -148,7 +152,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
-                   reach=room_reach(units), disc=disc, ink_share=units.ink_share,
+                   reach=room_reach(units), disc=disc, ink_share=units.ink_share, resolved=resolved,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
                    regions=tuple(layer.region for layer in layers))

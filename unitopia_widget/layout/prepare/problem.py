@@ -40,6 +40,8 @@ class Problem:
     anchor: object | None = None   # positions.Anchor: the pull of x=/y= bound units to their targets
     max_iterations: int = 600      # the iteration cap (the layers' iterations=)
     ink_share: np.ndarray | None = None  # (N,) ink area / footprint area, < 1 for hollow marks; None: all 1
+    resolved: bool = False         # every mark solid and TARGET_RADIUS raster px across or more at the
+                                   # start: no contact is finer than the raster (rules.decay)
     device: str = "cpu"
     regions: tuple = ()            # per layer: its allowed region (a design Container), for contacts.clear
 

