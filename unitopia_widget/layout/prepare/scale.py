@@ -11,7 +11,7 @@ import torch
 from ...design.encodings import footprint
 from ...design.sharing import by_container
 from ...design.units import Units
-from .lattice import Region
+from .lattice import container_region
 from .pack import STEP, Packing, packable, thin
 from .start import emission_ranks, footprint_radius, later_radius, pack_layer, spot_cost
 
@@ -97,8 +97,7 @@ def scale_cap(units: Units, layers, canvas, i: int) -> float:
 
 def widest_disc(container, canvas) -> float:
     """Radius (canvas px) of the widest disc inside ``container`` on the canvas."""
-    rho = min(1.0, 600.0 / max(canvas))
-    return float(Region(container.coverage(canvas, rho), rho).depth.max())
+    return float(container_region(container, canvas, min(1.0, 600.0 / max(canvas))).depth.max())
 
 
 def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps, seed):
@@ -126,7 +125,7 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
         for i in members:
             key = repr(layers[i].region.to_json())
             if key not in regions:
-                regions[key] = Region(layers[i].region.coverage(canvas, rho), rho)
+                regions[key] = container_region(layers[i].region, canvas, rho)
 
         def fits(scale: float) -> bool:
             packings = {}
