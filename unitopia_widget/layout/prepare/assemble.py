@@ -21,6 +21,7 @@ from ..step.raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyr
 from ..step.strata import Radial, sweep_of
 from . import arrange, positions
 from .fields import region_fields
+from .kept import kept
 from .order import start_order
 from .pack import thin
 from .problem import Cancelled, Problem
@@ -202,12 +203,9 @@ def _fields(container, grid: RasterGrid, falloff: float):
     ``FIELDS_KEPT`` asked for, as ``lattice.container_region`` keeps regions: a second layout
     of the same container and marks skips the coverage and the distance transform (the terms
     copy the fields, which are only read)."""
-    key = (repr(container.to_json()), tuple(grid.canvas), float(grid.rho), grid.pad, float(falloff))
-    fields = _FIELDS.pop(key, None)
-    if fields is None:
+    def make():
         cov = container.coverage(grid.canvas, grid.rho)
-        fields = tuple(torch.from_numpy(a).reshape(-1) for a in region_fields(cov, grid, falloff))
-    _FIELDS[key] = fields
-    while len(_FIELDS) > FIELDS_KEPT:
-        del _FIELDS[next(iter(_FIELDS))]
-    return fields
+        return tuple(torch.from_numpy(a).reshape(-1) for a in region_fields(cov, grid, falloff))
+
+    key = (repr(container.to_json()), tuple(grid.canvas), float(grid.rho), grid.pad, float(falloff))
+    return kept(_FIELDS, key, make, FIELDS_KEPT)

@@ -7,6 +7,8 @@ import math
 import numpy as np
 from scipy import ndimage
 
+from .kept import kept
+
 
 class Region:
     """A container's inside, sampled on a raster, for placing points.
@@ -69,14 +71,8 @@ def container_region(container, canvas, rho: float) -> Region:
     """The ``Region`` of ``container`` on ``canvas`` at ``rho``, made once per (container
     JSON, canvas, rho) among the last ``REGIONS_KEPT`` asked for (a warm run asks again for
     the regions of the last; regions are only read)."""
-    key = (repr(container.to_json()), tuple(canvas), float(rho))
-    region = _REGIONS.pop(key, None)
-    if region is None:
-        region = Region(container.coverage(canvas, rho), rho)
-    _REGIONS[key] = region
-    while len(_REGIONS) > REGIONS_KEPT:
-        del _REGIONS[next(iter(_REGIONS))]
-    return region
+    return kept(_REGIONS, (repr(container.to_json()), tuple(canvas), float(rho)),
+                lambda: Region(container.coverage(canvas, rho), rho), REGIONS_KEPT)
 
 
 def hex_points(bbox, spacing: float, phase: float = 0.0) -> np.ndarray:
