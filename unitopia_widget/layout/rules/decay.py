@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .legalize import LegalizeSettings
+from .legalize import over_bounds
 from .state import Rule
 
 
@@ -32,9 +32,7 @@ class Decay(Rule):
     Settings = DecaySettings
 
     def __call__(self, s):
-        c = LegalizeSettings()
-        legal = (s.p.resolved and s.overlap_g is not None
-                 and bool((s.overlap_g <= c.final_overlap).all() and (s.outside_g <= c.final_outside).all()))
+        legal = s.p.resolved and s.overlap_g is not None and not over_bounds(s).any()
         s.polish_left -= self.settings.legal_pace if legal else 1
         for g, lr0 in zip(s.optimizer.param_groups, s.base_lrs):
             g["lr"] = lr0 * max(s.polish_left, self.settings.floor) / s.steps.polish_iterations

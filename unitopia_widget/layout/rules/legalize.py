@@ -28,6 +28,12 @@ class LegalizeSettings:
     round_share: int = 3           # a round polishes 1 / round_share of the polish again
 
 
+def over_bounds(s: State, c: LegalizeSettings = LegalizeSettings()) -> np.ndarray:
+    """Bool ``(G,)``: scale groups whose overlap share is above ``final_overlap`` or whose
+    outside share is above ``final_outside``."""
+    return (s.overlap_g > c.final_overlap) | (s.outside_g > c.final_outside)
+
+
 def unit_crowding(s: State) -> np.ndarray:
     """``(G,)`` per scale group, the largest share of one hollow unit's ink that the loss
     counts as overlapped: its overlapped footprint alpha over its drawn alpha times its
@@ -77,8 +83,7 @@ class Legalize(Rule):
         if not (s.polish_left <= 0 or s.iteration >= p.max_iterations):
             return False
         worst = unit_crowding(s)
-        bad = (s.overlap_g > c.final_overlap) | (s.outside_g > c.final_outside) \
-            | (worst > c.final_unit_overlap)
+        bad = over_bounds(s, c) | (worst > c.final_unit_overlap)
         limit = c.rounds if ctl.free.any() else c.rounds_open
         if bad.any() and s.rounds < limit and s.iteration < p.max_iterations:
             s.rounds += 1
