@@ -368,6 +368,27 @@ def test_is_thin_opens_by_the_disc_as_a_morphological_opening_does():
     assert True in answers and False in answers
 
 
+def test_edt_gives_scipys_distances_to_the_last_bit():
+    # distance.edt transforms the mask's box only and sums integer offsets: the distances
+    # must be scipy's exactly, for masks touching the array's edge, empty and full ones too
+    from scipy import ndimage
+    from unitopia_widget.layout.step.distance import edt
+    rng = np.random.default_rng(5)
+    masks = [np.zeros((7, 9), bool), np.ones((7, 9), bool), np.ones((1, 1), bool)]
+    for _ in range(40):
+        h, w = (int(k) for k in rng.integers(2, 120, 2))
+        field = ndimage.gaussian_filter(rng.random((h, w)), float(rng.uniform(0.5, 6.0)))
+        mask = field > rng.uniform(0.4, 0.6)
+        masks += [mask, ~mask]
+    cropped = 0
+    for mask in masks:
+        got, want = edt(mask), ndimage.distance_transform_edt(mask)
+        assert got.dtype == want.dtype and np.array_equal(got, want)
+        rows, cols = np.nonzero(mask.any(1))[0], np.nonzero(mask.any(0))[0]
+        cropped += bool(len(rows)) and (rows[0] > 1 or cols[0] > 1 or rows[-1] < mask.shape[0] - 2)
+    assert cropped > 10   # the box is smaller than the array for many of them
+
+
 def test_keep_thin_keeps_a_one_texel_line_opaque_on_every_level():
     line = np.zeros((256, 256), np.float32)
     line[:, 100] = 1.0

@@ -2,8 +2,8 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy import ndimage
 
+from ..step.distance import edt
 from ..step.raster import RasterGrid
 
 
@@ -29,7 +29,7 @@ def region_fields(coverage: np.ndarray, grid: RasterGrid, falloff: float):
     inside = padded(coverage, grid)
     outside = 1.0 - inside
     if (inside >= 0.5).any():
-        distance = ndimage.distance_transform_edt(inside < 0.5).astype(np.float32)
+        distance = edt(inside < 0.5).astype(np.float32)
     else:
         distance = np.zeros_like(inside)
     penalty = outside + np.maximum(distance - 0.5, 0.0) / max(falloff, 1e-3)

@@ -5,8 +5,8 @@ import functools
 import math
 
 import numpy as np
-from scipy import ndimage
 
+from ..step.distance import edt
 from .kept import kept
 
 
@@ -29,7 +29,7 @@ class Region:
     def depth(self) -> np.ndarray:
         """``(H, W)`` canvas px from each raster pixel to the outside (0 outside); made when
         first read."""
-        return ndimage.distance_transform_edt(self.inside) / self.rho
+        return edt(self.inside) / self.rho
 
     @functools.cached_property
     def signed_depth(self) -> np.ndarray:
@@ -37,8 +37,8 @@ class Region:
         of the nearest pixel across it; the raster's edge bounds too): positive inside,
         negative outside; made when first read."""
         padded = np.pad(self.inside, 1)
-        inside = ndimage.distance_transform_edt(padded)[1:-1, 1:-1]
-        outside = ndimage.distance_transform_edt(~padded)[1:-1, 1:-1]
+        inside = edt(padded)[1:-1, 1:-1]
+        outside = edt(~padded)[1:-1, 1:-1]
         return (np.maximum(inside - 0.5, 0.0) - np.maximum(outside - 0.5, 0.0)) / self.rho
 
     def contains(self, points: np.ndarray) -> np.ndarray:

@@ -20,10 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import torch
-from scipy import ndimage
 
 from ...design.encodings import footprint
 from ..prepare.pack import thin
+from ..step.distance import edt
 from .measure_room import measures_room
 from .state import Rule, forget, movable
 from .uncross import long_axis
@@ -134,7 +134,7 @@ def exchange(p, ctl, place, optimizer, groups: np.ndarray, grow: np.ndarray, val
             mine = (p.layer == layer) & free
             poking = mine & slim & (out > c.poking * ink)
             if poking.any() and inside[layer].any():
-                depth = ndimage.distance_transform_edt(inside[layer].reshape(p.grid.shape) >= 0.5)
+                depth = edt(inside[layer].reshape(p.grid.shape) >= 0.5)
                 pairs += trades(center, girth, arm, poking, np.nonzero(mine)[0], depth)
         left = out[mine_g].sum() - out[[u for u, _ in pairs]].sum()
         if pairs and left < grow[g] * ink[mine_g].sum():

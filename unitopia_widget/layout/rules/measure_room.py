@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import torch
-from scipy import ndimage
 
+from ..step.distance import edt
 from .state import Rule
 
 
@@ -32,7 +32,7 @@ def empty_share(cover: np.ndarray, inside: np.ndarray, reach: float) -> float:
     total = int(mask.sum())
     if total == 0:
         return 0.0
-    far = ndimage.distance_transform_edt(cover < 0.5) > max(reach, 1.0)
+    far = edt(cover < 0.5) > max(reach, 1.0)
     return float((far & mask).sum()) / total
 
 

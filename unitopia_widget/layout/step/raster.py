@@ -30,6 +30,8 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
+from .distance import edt
+
 #: Patch sides (raster px) that groups are rounded up to: few groups, little waste.
 PATCH_SIDES = (4, 6, 8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48, 56, 64, 80, 96,
                112, 128, 160, 192, 224, 256, 320, 384, 448, 512, 640, 768, 1024)
@@ -78,14 +80,12 @@ def _box_filter(n_in: int, n_out: int, like: torch.Tensor) -> torch.Tensor:
 def is_thin(alpha: np.ndarray, stroke: float = 0.1) -> bool:
     """Whether most of a silhouette ``(h, w)`` is lines thinner than ``stroke`` times its
     long side (a sketch, a line icon): opening by that width removes most of it."""
-    from scipy import ndimage
-
     ink = alpha >= 0.5
     r = max(1, int(round(stroke * max(alpha.shape) / 2)))
     # the opening by the disc of radius r as two distance transforms (a fifth of the time):
     # what lies over r from the background (the padding too), grown back by r
-    eroded = ndimage.distance_transform_edt(np.pad(ink, r + 1)) > r
-    opened = ndimage.distance_transform_edt(~eroded) <= r if eroded.any() else eroded
+    eroded = edt(np.pad(ink, r + 1)) > r
+    opened = edt(~eroded) <= r if eroded.any() else eroded
     return bool(opened.sum() < 0.5 * max(ink.sum(), 1))
 
 
