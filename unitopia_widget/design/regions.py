@@ -224,6 +224,7 @@ def coverage(rows: Rows, line, x0, x1, rho: float, shape: tuple[int, int]) -> np
     idx = np.concatenate([base + ia, base + ia + 1, base + ib, base + ib + 1])
     val = np.concatenate([weight * (1 - fa), weight * fa, -weight * (1 - fb), -weight * fb])
     steps = np.bincount(idx, weights=val, minlength=n_rows * (n_cols + 2))
+    steps = steps.astype(np.float64, copy=False)   # with no spans, bincount counts in int64
     # in place: a large raster's fresh arrays cost more than the sums
     cov = np.cumsum(steps.reshape(n_rows, n_cols + 2), axis=1, out=steps.reshape(n_rows, n_cols + 2))
     return np.clip(cov[:, :n_cols], 0.0, 1.0, out=cov[:, :n_cols]).astype(np.float32)
