@@ -249,10 +249,45 @@ def test_the_units_shares_of_the_overlap_add_up_to_each_layers_overlap(blocks):
     assert bool((per_unit > 0).any())
 
 
-def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers():
+@pytest.mark.parametrize("blocks", [None, [[0, 0, 0], [1, 0, 0], [1, 1, 0]]])
+def test_mostly_empty_samples_are_summed_inked_alone_with_the_same_numbers(blocks, monkeypatch):
+    # most samples at alpha 0 (a thin mark's turning square): the forward sums the inked ones
+    # alone. Loss, per-layer sums and the gradient through the alphas are those of summing
+    # them all, call after call on the same terms (a kept buffer of another length)
+    import unitopia_widget.layout.step.losses as losses
+
+    def run(pack, cases):
+        monkeypatch.setattr(losses, "PACK_EMPTY", 0.5 if pack else 1.0)
+        terms, out = random_case(7, 3, 10, 50, blocks)[3], []
+        for x, index, layer in cases:
+            x = x.clone().requires_grad_(True)
+            loss = CanvasLoss.apply(torch.relu(x), index, layer, terms)   # alpha 0: no gradient
+            (grad,) = torch.autograd.grad(loss, x)
+            out.append((loss.detach(), terms.sums.clone(), grad))
+        return out, terms
+
+    cases = []
+    for seed, samples in ((1, 400), (2, 250), (3, 400)):
+        g = torch.Generator().manual_seed(seed)
+        values, index, layer, _ = random_case(seed, 3, 10, samples, blocks)
+        empty = torch.rand(samples, generator=g) < 0.75
+        cases.append((torch.where(empty, -values, values), index, layer))
+    (packed, terms), (full, _) = run(True, cases), run(False, cases)
+    assert terms._packed is not None                  # the inked samples were packed
+    for a, b in zip(packed, full):
+        for x, y in zip(a, b):
+            assert torch.allclose(x, y, rtol=1e-12, atol=1e-12)
+    assert all(bool((grad != 0).any()) for *_, grad in packed)
+
+
+@pytest.mark.parametrize("pack", [False, True])
+def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers(pack, monkeypatch):
     # marks whose patch meets no pixel with a containment penalty or an outside share read
-    # zeros there: the forward gathers both tables only at the others, to the last bit
+    # zeros there: the forward gathers both tables only at the others, to the last bit; the
+    # same with the inked samples packed (every empty one packed away here)
     import numpy as np
+    import unitopia_widget.layout.step.losses as losses
+    monkeypatch.setattr(losses, "PACK_EMPTY", 0.0 if pack else 1.0)
     from unitopia_widget.layout.step.raster import (Planner, RasterGrid, SPRITE_SIDE, render_samples,
                                                     sprite_pyramid)
     grid = RasterGrid((60.0, 40.0), 1.0, pad=2)
@@ -295,6 +330,14 @@ def test_the_tables_read_at_the_border_marks_alone_give_the_same_numbers():
     assert not torch.equal(again, border)
     for read, full in zip(run(values, index, again), run(values, index, None)):
         assert torch.equal(read, full)
+    assert (terms._packed is not None) == pack and bool((values == 0).any())
+    if pack:   # packed, the numbers are those of every sample summed, but for rounding
+        loss, grad, sums = run(values, index, again)
+        monkeypatch.setattr(losses, "PACK_EMPTY", 1.0)
+        dense_loss, dense_grad, dense_sums = run(values, index, again)
+        inked = values > 0
+        assert torch.allclose(loss, dense_loss, rtol=1e-6) and torch.allclose(sums, dense_sums, rtol=1e-6)
+        assert torch.allclose(grad[inked], dense_grad[inked]) and bool((grad[~inked] == 0).all())
 
 
 def test_a_patch_overhanging_the_raster_is_read_whole():
