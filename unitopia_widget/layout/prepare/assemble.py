@@ -116,8 +116,13 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     bands = [float(footprints[np.isin(units.layer, np.nonzero(rests[a].numpy())[0])].max())
              if rests[a].any() else 0.0 for a in range(len(layers))]
     sweeps = tuple(sweep_of(layer.forces, band) for layer, band in zip(layers, bands))
-    sweeps = tuple(s.on(grid.shape, grid.rho, grid.pad, dev)
-                   if isinstance(s, Radial) and rests[a].any() else s for a, s in enumerate(sweeps))
+    # layers swept alike share one radial shadow: its grids are made once
+    shared = {}
+    for a, s in enumerate(sweeps):
+        if isinstance(s, Radial) and rests[a].any() and s not in shared:
+            shared[s] = s.on(grid.shape, grid.rho, grid.pad, dev)
+    sweeps = tuple(shared[s] if isinstance(s, Radial) and rests[a].any() else s
+                   for a, s in enumerate(sweeps))
     # layers that share a container and do not block each other collide both ways
     for a in range(len(layers)):
         for b in range(a + 1, len(layers)):
