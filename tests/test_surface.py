@@ -104,3 +104,41 @@ def test_small_marks_a_large_one_rolled_over_come_back_up_onto_it():
     table = engine.placements(units, chart.layers, result)
     assert result.phases.get("settle.resurface", 0) > 0
     assert below_envelope(table, "0", "1") == 0.0
+
+
+def test_a_lift_finds_the_distance_a_plain_scan_of_every_step_finds():
+    # _lift reads only the spots whose box holds a free pixel and stops at the region's box;
+    # its answer must be that of trying every distance of every step in turn, as the rule
+    # says: the fewest raster px that clear the mark, the first step of equal distances
+    from scipy import ndimage
+    from unitopia_widget.layout.rules.resurface import ResurfaceSettings, _fan, _lift, _room
+    rng, c = np.random.default_rng(4), ResurfaceSettings()
+    h, w, answers = 48, 64, []
+    for _ in range(30):
+        field = ndimage.gaussian_filter(rng.random((h, w)), float(rng.uniform(1.5, 4.0)))
+        block = torch.from_numpy((field > np.quantile(field, rng.uniform(0.3, 0.8))).astype(np.float32))
+        region = np.zeros((h, w), np.float32)
+        region[rng.integers(0, 12):rng.integers(30, h), rng.integers(0, 16):rng.integers(40, w)] = 1.0
+        outside = torch.from_numpy(1.0 - region).reshape(-1)
+        block = torch.maximum(block.reshape(-1), outside)
+        y, x = int(rng.integers(8, h - 8)), int(rng.integers(8, w - 8))
+        rows, cols = np.mgrid[y - 3:y + 4, x - 2:x + 3]
+        pixel = torch.as_tensor((rows * w + cols).reshape(-1))
+        alpha = torch.from_numpy(rng.uniform(0.2, 1.0, len(pixel)).astype(np.float32))
+        turn = rng.uniform(0, 2 * np.pi)
+        steps = np.array(_fan(np.array([np.cos(turn), np.sin(turn)]), c.fan))
+        want = None
+        for k, step in enumerate(steps):   # every distance up to past the longer side
+            for d in range(1, 1 + (max(h, w) - 1) // c.chunk * c.chunk + c.chunk):
+                r = pixel // w + int(np.rint(d * step[1]))
+                q = pixel % w + int(np.rint(d * step[0]))
+                on = (r >= 0) & (r < h) & (q >= 0) & (q < w)
+                cover = torch.where(on, block[(r * w + q).clamp(0, h * w - 1)], torch.tensor(1.0))
+                if float((cover * alpha).sum()) <= c.clear * float(alpha.sum()):
+                    if want is None or d < want[0]:
+                        want = (d, k)
+                    break
+        got = _lift(block, alpha, pixel, steps, h, w, _room(block, outside, h, w, c.clear), c)
+        assert got == want
+        answers.append(want)
+    assert sum(a is None for a in answers) > 2 and sum(a is not None for a in answers) > 10

@@ -27,7 +27,8 @@ from .state import Rule, forget, movable
 class ResurfaceSettings:
     buried: float = 0.5    # share of a mark's alpha on its obstacle above which it is lifted
     clear: float = 0.01    # share of its alpha a lifted mark may keep on the obstacle or outside
-    chunk: int = 32        # lift distances tried at once, raster px
+    chunk: int = 32        # lift distances tried at once first, raster px
+    lookups: int = 1 << 22  # raster lookups in one chunk of lift distances at most (past the first)
     fan: tuple = (0.0, -np.pi / 6, np.pi / 6, -np.pi / 3, np.pi / 3)   # lift directions, off straight back
 
 
@@ -82,14 +83,15 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
             .index_add_(0, owner, values * block[index.long()])
         share = (on / drawn.clamp_min(1e-6)).cpu().numpy()
         lifting = mine[share[mine] > c.buried]
+        room = _room(block, terms.outside[a], height, width, c.clear) if len(lifting) else None
         for unit, back in zip(lifting, against(sweep, center[lifting])):
             samples = order[starts[unit]:starts[unit + 1]]
             alpha, pixel = values[samples], index[samples].long()
-            found = [(d, step) for step in _fan(back, c.fan)
-                     for d in [_lift(block, alpha, pixel, step, height, width, c)] if d is not None]
-            if not found:
+            steps = _fan(back, c.fan)
+            found = _lift(block, alpha, pixel, np.array(steps), height, width, room, c)
+            if found is None:
                 continue
-            distance, step = min(found, key=lambda f: f[0])
+            distance, step = found[0], steps[found[1]]
             shift = np.rint(distance * step).astype(int)
             moved = pixel + int(shift[1]) * width + int(shift[0])
             own[a].index_add_(0, pixel, -alpha).index_add_(0, moved, alpha)
@@ -107,28 +109,71 @@ def _fan(back: np.ndarray, fan: tuple) -> list:
     return out
 
 
-def _lift(block: torch.Tensor, alpha: torch.Tensor, pixel: torch.Tensor, step: np.ndarray,
-          height: int, width: int, settings: ResurfaceSettings):
-    """The fewest raster px along ``step (2,)`` (x, y) that leave at most ``settings.clear`` of
-    ``alpha (m,)`` at ``pixel (m,)`` (flat indices of an ``(height, width)`` raster) on
-    ``block (S,)``; off the raster counts as blocked. None where no distance clears it."""
+def _room(block: torch.Tensor, outside: torch.Tensor, height: int, width: int, clear: float):
+    """Where a lift may end, or None: ``(box, free)``, ``box = (row0, row1, col0, col1)``
+    (inclusive) around the pixels of ``outside (S,)`` under 1 (partly inside the layer's
+    region; ``block (S,)`` is 1 beyond it), and ``free (H + 1, W + 1)`` the summed-area
+    table of the pixels where ``block`` is at most ``clear``: a spot whose box holds none
+    leaves more than ``clear`` of any alpha on the block."""
+    rows, cols = torch.nonzero((outside < 1.0).reshape(height, width), as_tuple=True)
+    if not len(rows):
+        return None
+    free = np.zeros((height + 1, width + 1), dtype=np.int64)
+    free[1:, 1:] = (block <= clear).reshape(height, width).cpu().numpy().cumsum(0).cumsum(1)
+    return (int(rows.min()), int(rows.max()), int(cols.min()), int(cols.max())), free
+
+
+def _lift(block: torch.Tensor, alpha: torch.Tensor, pixel: torch.Tensor, steps: np.ndarray,
+          height: int, width: int, room, settings: ResurfaceSettings):
+    """``(distance, k)``: the fewest raster px along one of ``steps (D, 2)`` (x, y) that leave
+    at most ``settings.clear`` of ``alpha (m,)`` at ``pixel (m,)`` (flat indices of an
+    ``(height, width)`` raster) on ``block (S,)``, and that step's index (the first of equal
+    distances); beyond the box of ``room`` (``_room``) counts as blocked. None where no
+    distance clears it.
+
+    Distances 1, 2, ... are tried in chunks, every step at once: ``settings.chunk`` first,
+    then twice as many each time while the ``(D, chunk, m)`` lookups stay under
+    ``settings.lookups``. Only the spots whose box holds a free pixel of ``room`` are read; a step
+    whose mark's box has left the room's box is dropped (a ray does not come back into a
+    box). The chunks end where chunks of ``settings.chunk`` would: past the raster's longer
+    side."""
     row, col = pixel // width, pixel % width
     total = float(alpha.sum())
-    if total <= 0:
+    if total <= 0 or room is None:
         return None
-    for first in range(1, max(height, width) + 1, settings.chunk):
-        distance = np.arange(first, first + settings.chunk)
-        dy = torch.as_tensor(np.rint(distance * step[1]).astype(np.int64), device=pixel.device)
-        dx = torch.as_tensor(np.rint(distance * step[0]).astype(np.int64), device=pixel.device)
-        r, c = row[None] + dy[:, None], col[None] + dx[:, None]                 # (CHUNK, m)
-        on = (r >= 0) & (r < height) & (c >= 0) & (c < width)
-        covered = torch.where(on, block[(r * width + c).clamp(0, block.numel() - 1)],
-                              torch.ones((), dtype=block.dtype, device=block.device))
-        clear = ((covered * alpha[None]).sum(1) <= settings.clear * total).cpu().numpy()
-        if clear.any():
-            return int(distance[np.argmax(clear)])
-        if not on.any():
-            return None
+    (row0, row1, col0, col1), free = room
+    top, bottom, left, right = int(row.min()), int(row.max()), int(col.min()), int(col.max())
+    last = 1 + (max(height, width) - 1) // settings.chunk * settings.chunk + settings.chunk
+    live, first, size = np.arange(len(steps)), 1, settings.chunk
+    blocked = torch.ones((), dtype=block.dtype, device=block.device)
+    while first < last and len(live):
+        distance = np.arange(first, min(first + size, last))
+        dy = np.rint(distance[None] * steps[live, 1:]).astype(np.int64)        # (D, chunk)
+        dx = np.rint(distance[None] * steps[live, :1]).astype(np.int64)
+        r0, r1 = np.maximum(top + dy, row0), np.minimum(bottom + dy, row1)
+        c0, c1 = np.maximum(left + dx, col0), np.minimum(right + dx, col1)
+        meets = (r0 <= r1) & (c0 <= c1)             # the mark's box meets the room's box
+        r0, r1, c0, c1 = (np.where(meets, v, 0) for v in (r0, r1, c0, c1))
+        held = free[r1 + 1, c1 + 1] - free[r0, c1 + 1] - free[r1 + 1, c0] + free[r0, c0]
+        spots = meets & (held > 0)                  # ... and holds a free pixel
+        if spots.any():
+            k, j = np.nonzero(spots)
+            shift_y = torch.as_tensor(dy[k, j], device=pixel.device)[:, None]
+            shift_x = torch.as_tensor(dx[k, j], device=pixel.device)[:, None]
+            r, c = row + shift_y, col + shift_x                              # (spots, m)
+            on = (r >= row0) & (r <= row1) & (c >= col0) & (c <= col1)
+            covered = torch.where(on, block[(r * width + c).clamp(0, block.numel() - 1)], blocked)
+            ok = ((covered * alpha).sum(-1) <= settings.clear * total).cpu().numpy()
+            if ok.any():
+                clear = np.zeros(spots.shape, dtype=bool)
+                clear[k[ok], j[ok]] = True
+                hit = np.where(clear.any(1), clear.argmax(1), len(distance))
+                best = int(np.argmin(hit))
+                return int(distance[hit[best]]), int(live[best])
+        live = live[meets.any(1)]
+        first += size
+        if len(live) * 2 * size * len(alpha) <= settings.lookups:
+            size *= 2
     return None
 
 
