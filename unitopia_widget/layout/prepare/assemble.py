@@ -121,8 +121,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     for a, s in enumerate(sweeps):
         if isinstance(s, Radial) and rests[a].any() and s not in shared:
             shared[s] = s.on(grid.shape, grid.rho, grid.pad, dev)
-    sweeps = tuple(shared[s] if isinstance(s, Radial) and rests[a].any() else s
-                   for a, s in enumerate(sweeps))
+    sweeps = tuple(shared.get(s, s) if rests[a].any() else s for a, s in enumerate(sweeps))
     # layers that share a container and do not block each other collide both ways
     for a in range(len(layers)):
         for b in range(a + 1, len(layers)):

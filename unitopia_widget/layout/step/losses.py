@@ -260,10 +260,7 @@ class CanvasTerms:
         times the outside share and the penalty at ``border`` (see ``border``), 0 at every
         other sample (where both tables are 0), clearing only the samples the last call
         wrote. Returns the penalty at ``border`` ``(k,)``; ``values``, ``flat`` ``(M,)``."""
-        if packed:
-            rows[1].zero_()
-            rows[4].zero_()
-        elif self._rim is None:
+        if packed or self._rim is None:
             rows[1].zero_()
             rows[4].zero_()
         else:
