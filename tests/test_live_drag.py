@@ -4,6 +4,8 @@ running reflow (the latest position wins, nothing queues); the drop ("pin") ends
 usual final layout (``jupyter/drag.py``)."""
 from __future__ import annotations
 
+import os
+import sys
 import threading
 import time
 
@@ -13,6 +15,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.jupyter.drag import DRAG_STEPS
+from unitopia_widget.jupyter.runner import BACKGROUND_NICE
 from unitopia_widget.layout import engine
 
 CENTRE = (200.0, 150.0)
@@ -102,8 +105,7 @@ def test_a_newer_drag_supersedes_the_running_reflow_and_nothing_queues(laid, mon
             frames.append(1)
             on_frame(*frame)
         placements = real(on_frame=offered, **kwargs)
-        # cut short, or over before it could be (a reflow offers a frame a round of steps,
-        # and its last)
+        # cut short, or over before it could be (a reflow offers a frame a step, and its last)
         runs[-1] = (runs[-1], chart.result.cancelled or len(frames) <= DRAG_STEPS + 1)
         return placements
     monkeypatch.setattr(chart, "layout", layout)
@@ -119,6 +121,25 @@ def test_a_newer_drag_supersedes_the_running_reflow_and_nothing_queues(laid, mon
     assert runs[0][1], "the first reflow was cut short by the newer position after its first steps"
     assert runs[1] == (pytest.approx(moves[-1][0], abs=0.01), False), "the newest position won"
     assert w.placements.x.iloc[0] == pytest.approx(moves[-1][0], abs=0.01)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="per-thread nice is Linux's")
+def test_the_runs_that_answer_a_drag_keep_the_kernels_priority_and_a_plain_run_yields(laid, monkeypatch):
+    w = widget(laid)
+    mine = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+    chart, real, seen = w._chart, w._chart.layout, []
+
+    def layout(**kwargs):
+        seen.append(os.getpriority(os.PRIO_PROCESS, threading.get_native_id()))
+        return real(**kwargs)
+    monkeypatch.setattr(chart, "layout", layout)
+    _, moves = path(w, 2)
+    drag(w, *moves[0])
+    wait_idle(w)
+    drag(w, *moves[1], kind="pin")
+    wait_idle(w)
+    w.run(wait=True)
+    assert seen == [mine, mine, min(19, mine + BACKGROUND_NICE)]
 
 
 def test_a_drag_outside_the_container_is_reported_and_the_drag_goes_on(laid):

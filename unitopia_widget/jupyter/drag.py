@@ -13,7 +13,8 @@ steps (it keeps its frame so far, the next run starts from it), so the latest po
 and no queue builds up: a moved force, which changes what every mark feels, gets a few
 warm steps per message. The drop's run is not cut short by anything but a new drag: it
 ends with the usual final layout (status "done", the static image refreshed); the drag's
-runs skip that image.
+runs skip that image. The worker's runs keep the kernel's CPU priority (``Runner``: a
+layout run otherwise yields to every other process): the user waits on each.
 """
 from __future__ import annotations
 
@@ -30,6 +31,7 @@ class LiveDrag:
     its runs go through ``_supersedable``."""
 
     _dragging = False   # a drag's run (not the drop's) is going: ``_on_done`` skips the static image
+    _answering = False  # a run of the drag worker (a drag's or the drop's) is going: not niced
 
     def _drag(self, index, x, y, final: bool) -> None:
         """Pin units ``index`` at ``x, y`` px and reflow; ``final``: the drop."""
@@ -76,14 +78,14 @@ class LiveDrag:
                     return
             apply, final = job
             try:
-                self._dragging = not final
+                self._dragging, self._answering = not final, True
                 apply()
                 self._chart.start_from_last()   # the superseded reflow's marks, as shown
                 self.run(wait=True)
             except Exception as exc:   # a drop outside the container: reported, the drag goes on
                 self._on_error(exc)
             finally:
-                self._dragging = False
+                self._dragging = self._answering = False
 
     def _init_drag(self) -> None:
         self._drag_lock = threading.Lock()

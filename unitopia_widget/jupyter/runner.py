@@ -11,7 +11,10 @@ called, and the next run waits for its thread before starting.
 
 The layout thread runs at a lower CPU priority (``nice``, Linux): where the browser
 drawing the frames shares the kernel's cores, the browser comes first and the layout
-takes the rest, so the animation is not starved by the run it shows.
+takes the rest, so the animation is not starved by the run it shows. A run that answers
+the pointer (``start(..., nice=0)``: a live drag's) keeps the caller's priority instead:
+its runs are short, and at a lower priority any other busy process on the machine (a
+build, a second kernel) would starve the reflow the user is waiting for.
 """
 from __future__ import annotations
 
@@ -65,18 +68,20 @@ class Runner:
             return self._requests
 
     def start(self, job: Callable, on_frame: Callable, on_done: Callable, on_error: Callable,
-              ticket: int | None = None) -> bool:
+              ticket: int | None = None, nice: int | None = None) -> bool:
         """Run ``job(on_frame=..., cancel=...)`` in a thread, replacing any current run.
 
         ``on_done(result)`` or ``on_error(exc)`` is called from the thread, only
         for the newest run. Returns False (and runs nothing) when a ``stop()`` came after
-        ``ticket`` was handed out.
+        ``ticket`` was handed out. ``nice``: this run's step of the thread's nice value
+        (None: the runner's).
         """
         ticket = self.request() if ticket is None else ticket
         with self._starting:
-            return self._start(job, on_frame, on_done, on_error, ticket)
+            return self._start(job, on_frame, on_done, on_error, ticket,
+                               self.nice if nice is None else nice)
 
-    def _start(self, job, on_frame, on_done, on_error, ticket) -> bool:
+    def _start(self, job, on_frame, on_done, on_error, ticket, nice) -> bool:
         self.end_current()
         with self._lock:
             if ticket <= self._stopped_upto:
@@ -99,7 +104,7 @@ class Runner:
                 held[0] = frame
 
         def work():
-            lower_priority(self.nice)
+            lower_priority(nice)
             try:
                 result = job(on_frame=throttled, cancel=cancel.is_set)
             except BaseException as exc:  # reported to the widget and kept for wait()

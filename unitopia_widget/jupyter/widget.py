@@ -252,7 +252,7 @@ class UnitoPia(LiveDrag, Pinning, KeptDesign, anywidget.AnyWidget):
             self.progress = {**self._progress, "done": False}   # this run's, from 0
         self._laid_out = _layout_key(self._chart.design())
         if not self._runner.start(self._job, self._on_frame, self._on_done, self._on_run_error,
-                                  ticket=ticket):
+                                  ticket=ticket, nice=0 if self._answering else None):
             self._on_done(None)   # stopped before it started
         elif wait:
             try:

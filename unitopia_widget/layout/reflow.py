@@ -258,14 +258,14 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
                 or not np.array_equal(window.place.movable.cpu().numpy(), active[sub]):
             window = Window(p, sub, center, active, foot_w, foot_h, base_lr, p.terms.w_fill,
                             box if cropped else None)
+        angle = np.degrees(p.placement.theta.detach().cpu().numpy())
         for _ in range(settings.round_iterations):
             gain = max(settings.floor, settings.gain * settings.gain_decay ** iterations)
             window.step(base_lr * gain, ink[sub])
             iterations += 1
-        center[sub] = window.centers()
-        if on_frame is not None:
-            on_frame(np.column_stack([center, np.degrees(p.placement.theta.detach().cpu().numpy()),
-                                      scale]).astype(np.float32))
+            center[sub] = window.centers()
+            if on_frame is not None:   # every step: the runner sends at most its fps
+                on_frame(np.column_stack([center, angle, scale]).astype(np.float32))
         whole = sub[window.whole]
         now, drawn = window.shares()
         share[whole], ink_area[whole] = now[window.whole], drawn[window.whole]
