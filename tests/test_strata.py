@@ -282,3 +282,21 @@ def test_independent_scales_that_overfill_one_container_warn_and_name_the_fill()
         chart.layer(str(j)).set(fill=None)
     assert overfilled(chart.layers, "shared") == [] \
         and overfilled(chart.layers, "independent") == [(["0", "1", "2"], 1.5)]
+
+
+def test_rows_added_to_the_top_stratum_alone_pour_in_a_warm_run():
+    # three layers poured in turn from a grid; a warm run holds back only the rows added, so
+    # the middle stage is empty: the next stage with units is poured (it stopped at the empty one)
+    k = np.repeat(np.arange(3), [20, 20, 20])
+    df = pd.DataFrame({"k": k, "v": lognormal(len(k), 2, 4)})
+    chart = uw.Chart(df, size="v", by="k", canvas=(400, 300), boundary="open", fill=0.3,
+                     emitter=uw.GridEmitter(), container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.DirectionalForce(90)], iterations=200)
+    for j in (1, 2):
+        chart.layer(str(j)).set(blocks=[str(j - 1)])
+    chart.layout()
+    chart.set_data(pd.concat([df, pd.DataFrame({"k": [2, 2], "v": [2.0, 3.0]})], ignore_index=True))
+    table = chart.layout()
+    assert len(table) == 62 and chart.result.phases.get("settle.pour", 0) >= 1
+    top = table[table.layer == "2"]
+    assert (top.y < table[table.layer == "1"].y.mean()).mean() > 0.9   # the added rows on top too

@@ -13,8 +13,9 @@ class PourSettings:
 
 class Pour(Rule):
     """Each settle window, with layers held back for pouring (a layer that blocks on one
-    emitted from the same place): release the next stage once the one before rests, or after
-    ``stage_wait`` iterations; its marks start travelling."""
+    emitted from the same place): release the next stage that has units once the one before
+    rests, or after ``stage_wait`` iterations; its marks start travelling. (A warm start
+    keeps only its added units held, so stages between may be empty.)"""
 
     name = "pour"
     window = True
@@ -28,7 +29,8 @@ class Pour(Rule):
     def __call__(self, s):
         if s.poured < s.stage.max() and (not s.travelling
                                          or s.iteration - s.poured_at >= self.settings.stage_wait):
-            s.poured, s.poured_at, s.travelling = s.poured + 1, s.iteration, True
+            s.poured = int(s.stage[s.stage > s.poured].min())
+            s.poured_at, s.travelling = s.iteration, True
             s.place.hold(s.stage > s.poured)
             return True
         return False
