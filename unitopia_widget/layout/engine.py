@@ -2,7 +2,10 @@
 (``prepare.assemble``), warm-start and pin it (``prepare.warm``, ``prepare.pins``), solve it
 (``solver``), keep its frames (``frames``) and return the placements table with the units,
 scale, canvas and frames: the one value every output draws from. The rows are bound once,
-by the caller (``prepare.bind.bind``)."""
+by the caller (``prepare.bind.bind``).
+
+A layout whose thin marks shrank past its raster is checked, and where need be polished once
+more, on a raster made for its final scale (``finer``)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -12,15 +15,17 @@ import pandas as pd
 import torch
 
 from ..design.units import Units
+from . import finer
 from .frames import Frames
 from .prepare.assemble import build_problem, check_abort
 from .prepare.pins import pin_problem, pinned_units
 from .prepare.problem import Cancelled
 from .prepare.scale import initial_scale
-from .prepare.warm import warm_problem
+from .prepare.warm import snapshot, warm_problem
 from .reflow import reflow, resumed
 from .solver import Result, solve
 from .step.heap import held
+
 
 @dataclass
 class Layout:
@@ -133,6 +138,17 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
         problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
         result = solve(problem, on_frame=record, cancel=cancel, on_progress=on_progress,
                        frame_every=frame_every, start_frame=early is None)
+        again = None if result.cancelled else finer.scales_past(base, units, result)
+        if again is not None and not (cancel is not None and cancel()):
+            fine = build_problem(units, layers, canvas, seed, pick_device(device), scales=scales,
+                                 scale_at=again)
+            problem = warm_problem(fine, units, layers, canvas, snapshot(units, layers, result),
+                                   pinned, pin_xy)
+            problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
+            if finer.hidden(problem, result.stats):
+                base, result = fine, finer.joined(result, solve(
+                    problem, on_frame=record, cancel=cancel, on_progress=on_progress,
+                    frame_every=frame_every, start_frame=False, settled=True))
     if result.iterations == 0 and early is None and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")
     frames = kept.finish(np.column_stack([result.center, result.angle, result.unit_scale]))

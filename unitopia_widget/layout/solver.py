@@ -53,9 +53,10 @@ class Result:
 
 def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int = 3,
           cancel: Callable[[], bool] | None = None, on_progress: Callable | None = None,
-          start_frame: bool = True) -> Result:
+          start_frame: bool = True, settled: bool = False) -> Result:
     """Run the layout: render, step, read back, then the rules of ``rules.SCHEDULE``.
     ``start_frame=False``: the caller has sent the start frame (``build_problem``'s ``on_start``).
+    ``settled``: the start is a layout that settled (``finer``): the solve only polishes it.
     ``on_progress(iteration, loss, stats)`` after each step: ``stats`` the overlap and outside
     shares and ``"phase"``, the phase the step ran in ("settle", "polish")."""
     p = problem
@@ -91,7 +92,8 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
               stage=np.zeros(len(p.layer), dtype=int) if p.stage is None else np.asarray(p.stage),
               window_start=place.transforms()[0].detach().clone(), travelling=p.travelling,
               base_lrs=[g["lr"] for g in optimizer.param_groups],
-              polish_left=steps.polish_iterations, room=np.zeros(ctl.count, dtype=bool))
+              polish_left=steps.polish_iterations, room=np.zeros(ctl.count, dtype=bool),
+              phase="polish" if settled else "settle")
     start(s)
     applying = tuple(rule.name for rule in SCHEDULE if rule.applies(s))
     if s.stage.max() > 0:

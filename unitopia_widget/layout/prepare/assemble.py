@@ -36,11 +36,13 @@ STILL_ITERATIONS = 20     # the iterations of a layout in which no mark moves an
 
 def build_problem(units: Units, layers, canvas, seed: int, device: str,
                   max_iterations: int | None = None, scales: str = "shared",
-                  abort=None, on_start=None) -> Problem:
+                  abort=None, on_start=None, scale_at=None) -> Problem:
     """Assemble the solver's problem for ``units`` laid out by ``layers``; ``abort()``
     returning True between its steps raises ``Cancelled``. ``on_start(frame)`` gets the start
     frame (``step.placement.frame``) as soon as the start positions are known, before the region
-    fields and sprites: what ``solve`` would send first; ``abort`` is not asked after it."""
+    fields and sprites: what ``solve`` would send first; ``abort`` is not asked after it.
+    ``scale_at (G,)``: the scale groups start at these scales (and the raster is made for
+    them) instead of those the start picks."""
     # without order=, the units start in an order drawn from the seed, not the rows' order
     units = dataclasses.replace(units, order=start_order(units, layers, seed))
     order = block_order(layers)
@@ -54,25 +56,14 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                                                   scale_group, rho_start)
     group_scale, group_free = positions.capped_scales(units, layers, canvas, group_scale,
                                                       group_free, scale_group, rho_start)
+    if scale_at is not None:   # a layout's own scales (``engine.finer``): the raster aims at them
+        group_scale = np.asarray(scale_at, dtype=float)
     scale, free_scale = float(group_scale[0]), bool(group_free.any())
     unit_scale = group_scale[scale_group[units.layer]]
     check_abort(abort)
     band = footprint(units.margin)
-    foot = np.hypot(units.half_w, units.half_h) * band * unit_scale
-    # marks drawn under MIN_DRAWN px across (a heavy tail's dust, warned about) do not set the
-    # raster resolution: aiming it at them would make the raster, and every pass, many times larger
-    seen = 2 * np.minimum(units.half_w, units.half_h) * unit_scale >= MIN_DRAWN
-    r_mean = float(np.mean(foot[seen] if seen.any() else foot))
+    rho, r_mean = raster_rho(units, layers, canvas, unit_scale)
     w, h = canvas
-    rho = max(TARGET_RADIUS / r_mean, 0.25)
-    # thin marks collide across their short side: two strands side by side in pixels wider
-    # than they are share a pixel, whose summed alpha stays under 1, and their overlap is lost
-    long_side = 2 * np.maximum(units.half_w, units.half_h) * unit_scale
-    slim = thin(units.half_w, units.half_h) & (long_side >= MIN_DRAWN)
-    if slim.any():
-        across = 2 * np.minimum(units.half_w, units.half_h)[slim] * unit_scale[slim]
-        rho = max(rho, THIN_ACROSS / float(np.median(across)))
-    rho = min(rho, 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers))))
     half = np.stack([units.half_w, units.half_h]) * band * unit_scale
     rho = snap_rho(rho, half[0], half[1], any_angle(layers))
     grid = RasterGrid((w, h), rho, pad=2)
@@ -161,6 +152,34 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,
                    regions=tuple(layer.region for layer in layers))
+
+
+def raster_rho(units: Units, layers, canvas, unit_scale: np.ndarray) -> tuple[float, float]:
+    """``(rho, r_mean)``: the raster px per canvas px (before ``snap_rho``) for ``units``
+    drawn at ``unit_scale (N,)``, and their mean footprint radius, canvas px."""
+    foot = np.hypot(units.half_w, units.half_h) * footprint(units.margin) * unit_scale
+    # marks drawn under MIN_DRAWN px across (a heavy tail's dust, warned about) do not set the
+    # raster resolution: aiming it at them would make the raster, and every pass, many times larger
+    seen = 2 * np.minimum(units.half_w, units.half_h) * unit_scale >= MIN_DRAWN
+    r_mean = float(np.mean(foot[seen] if seen.any() else foot))
+    rho = max(TARGET_RADIUS / r_mean, 0.25)
+    across = thin_across(units, unit_scale)
+    if across is not None:
+        rho = max(rho, THIN_ACROSS / across)
+    w, h = canvas
+    return min(rho, 4.0, math.sqrt(MAX_RASTER / (w * h * len(layers)))), r_mean
+
+
+def thin_across(units: Units, unit_scale: np.ndarray) -> float | None:
+    """Canvas px across the median thin mark (box over 2:1, long side drawn at least
+    ``MIN_DRAWN``) drawn at ``unit_scale (N,)``; None without one. Thin marks collide across
+    their short side: two strands side by side in pixels wider than they are share a pixel,
+    whose summed alpha stays under 1, and their overlap is lost."""
+    long_side = 2 * np.maximum(units.half_w, units.half_h) * unit_scale
+    slim = thin(units.half_w, units.half_h) & (long_side >= MIN_DRAWN)
+    if not slim.any():
+        return None
+    return float(np.median(2 * np.minimum(units.half_w, units.half_h)[slim] * unit_scale[slim]))
 
 
 def check_abort(abort) -> None:

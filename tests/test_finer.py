@@ -1,0 +1,40 @@
+"""A layout whose solve shrank the scale past what its raster resolves is polished again on a
+finer raster (``layout/finer.py``): long thin marks that cannot pack at the asked fill
+shrink until they are under a raster pixel across, where their crossings read as no overlap."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import unitopia_widget as uw
+from ink import ink_metrics
+from unitopia_widget.layout import finer
+from unitopia_widget.layout.prepare.assemble import THIN_ACROSS, thin_across
+
+pytestmark = pytest.mark.usefixtures("one_thread")
+
+BAR = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 120 8">'
+                  '<rect width="120" height="8" fill="#555"/></svg>')
+ELLIPSE = (200, 150, 150, 110)
+
+
+def test_bars_shrunk_under_a_raster_pixel_are_polished_again_on_a_finer_raster_and_do_not_cross():
+    # 60 bars 15:1 turned to the centre, tied lengths (1, 4 and 16 wide), pushed up at fill
+    # 0.8: they jam across each other and the legalising rounds give up most of their size
+    rng = np.random.default_rng(1)
+    df = pd.DataFrame({"v": np.array([1.0, 4.0, 16.0])[rng.choice(3, 60, p=[0.5, 0.35, 0.15])]})
+    c = uw.Chart(df, mark=BAR, width="v", orientation="to_center", canvas=(400, 300), seed=1,
+                 container=uw.Container.ellipse(*ELLIPSE), boundary="open", fill=0.8,
+                 forces=[uw.DirectionalForce(270)])
+    with pytest.warns(UserWarning, match="more than its marks reach"):
+        c.layout()
+    measured = ink_metrics(c.to_svg(legend=False), c.canvas, ellipse=ELLIPSE)
+    # on the first raster alone: 2.2% of the ink overlapped, the bars crossing in the middle
+    assert measured["overlap"] < 0.01 and measured["outside"] < 0.005
+    phases = c.result.phases
+    assert phases.get("finer", 0) > 0, "polished once more on a finer raster"
+    assert c.result.iterations == phases["settle"] + phases["polish"]   # both solves counted
+    laid = c.laid   # the raster it ended on sees the bars at the scale they ended at
+    across = thin_across(laid.units, laid.result.unit_scale) * laid.problem.grid.rho
+    assert across * finer.FINER >= THIN_ACROSS
