@@ -31,7 +31,11 @@ class LiveDrag:
     its runs go through ``_supersedable``."""
 
     _dragging = False   # a drag's run (not the drop's) is going: ``_on_done`` skips the static image
-    _answering = False  # a run of the drag worker (a drag's or the drop's) is going: not niced
+
+    @property
+    def _answering(self) -> bool:
+        """Whether the caller is the drag worker: its runs (a drag's or the drop's) are not niced."""
+        return threading.current_thread() is self._drag_worker
 
     def _drag(self, index, x, y, final: bool) -> None:
         """Pin units ``index`` at ``x, y`` px and reflow; ``final``: the drop."""
@@ -78,14 +82,14 @@ class LiveDrag:
                     return
             apply, final = job
             try:
-                self._dragging, self._answering = not final, True
+                self._dragging = not final
                 apply()
                 self._chart.start_from_last()   # the superseded reflow's marks, as shown
                 self.run(wait=True)
             except Exception as exc:   # a drop outside the container: reported, the drag goes on
                 self._on_error(exc)
             finally:
-                self._dragging = self._answering = False
+                self._dragging = False
 
     def _init_drag(self) -> None:
         self._drag_lock = threading.Lock()

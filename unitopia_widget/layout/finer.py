@@ -22,6 +22,7 @@ import numpy as np
 from ..design.encodings import footprint
 from .prepare.assemble import THIN_ACROSS, thin_across
 from .prepare.problem import Problem
+from .reflow import unit_scales
 from .rules.legalize import LegalizeSettings
 from .solver import Result
 from .window import Window, final_stats
@@ -47,7 +48,7 @@ def hidden(p: Problem, seen: dict, legal: LegalizeSettings = LegalizeSettings())
     more than ``seen`` (the first raster's ``Result.stats`` of the same layout) says, by over
     what a legal layout keeps (``legal.final_overlap``: a share of the ink)."""
     n = len(p.layer)
-    scale = p.group_scales()[p.layer_groups()[p.layer]]
+    scale = unit_scales(p)
     band = footprint(p.margin)
     center = p.placement.transforms()[0].detach().cpu().numpy().astype(np.float64)
     drawn = Window(p, np.arange(n), center, np.zeros(n, bool), p.half_w * band * scale,

@@ -241,6 +241,7 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
     ink = torch.as_tensor(np.stack([foot_w, foot_h], 1) / band[:, None], dtype=torch.float32)
     iterations, window, box, cancelled = 0, None, None, False
     least, stall = np.inf, 0   # the least worst growth so far, and the rounds since it fell
+    angle = np.degrees(p.placement.theta.detach().cpu().numpy())   # the window turns no mark
     while grown.max(initial=0.0) > settings.worst or \
             float(((grown if settings.net else np.maximum(grown, 0)) * ink_area).sum()) > allowed:
         if active.sum() > settings.spread * n or iterations >= settings.max_iterations:
@@ -258,7 +259,6 @@ def settle(p: Problem, center: np.ndarray, old: np.ndarray, grew: np.ndarray,
                 or not np.array_equal(window.place.movable.cpu().numpy(), active[sub]):
             window = Window(p, sub, center, active, foot_w, foot_h, base_lr, p.terms.w_fill,
                             box if cropped else None)
-        angle = np.degrees(p.placement.theta.detach().cpu().numpy())
         for _ in range(settings.round_iterations):
             gain = max(settings.floor, settings.gain * settings.gain_decay ** iterations)
             window.step(base_lr * gain, ink[sub])
