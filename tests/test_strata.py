@@ -257,6 +257,33 @@ def test_a_stacks_obstacles_are_the_shadows_of_the_layers_below_call_after_call(
         assert sees_ink or not got[0].any()
 
 
+@pytest.mark.parametrize("sees_ink", [False, True])
+def test_radial_shadows_read_at_the_samples_are_the_whole_shadows_there(sees_ink):
+    """``CanvasTerms.obstacles(own, flat)`` (the loss's read: the radial shadows resampled at
+    the samples' pixels alone) equals the whole obstacle read at ``flat``, to the bit, call
+    after call: a stack of three layers swept in to two points, with ink at the raster's
+    corners and borders (where the rays' samples are cut to those that reach the raster)."""
+    from unitopia_widget.layout.step.losses import CanvasTerms
+    h, w = 45, 70
+    zeros = torch.zeros(3, h * w)
+    rests = torch.tensor([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]])
+    blocks = torch.zeros(3, 3)
+    if sees_ink:
+        blocks[0, 2] = 1.0
+    sweep = Radial(((10.0, 30.0, 1.0), (55.0, 12.0, 2.0)), band=3.0).on((h, w), 1.0, 0, "cpu")
+    terms = CanvasTerms(penalty=zeros, outside=zeros, inside=zeros, blocks=blocks, rests=rests,
+                        sweeps=(None, sweep, sweep), shape=(h, w))
+    rng = torch.Generator().manual_seed(3)
+    for _ in range(2):
+        own = torch.rand(3, h * w, generator=rng) * (torch.rand(3, h * w, generator=rng) > 0.6)
+        own.view(3, h, w)[:, [0, -1]] = 1.0   # the borders inked
+        flat = torch.randint(0, 3 * h * w, (4000,), generator=rng)
+        whole = terms.obstacles(own).reshape(-1).index_select(0, flat)
+        at = terms.obstacles(own, flat)
+        assert torch.equal(at, whole)
+        assert (at[flat >= h * w] > 0.5).sum() > 1000 and (at[flat < h * w] == 0).all() != sees_ink
+
+
 def test_independent_scales_that_overfill_one_container_warn_and_name_the_fill():
     """Three open layers stacked in one box under ``scales="independent"``: each alone covers
     the default fill (0.5) of it, 150% in all, which warns and names ``fill=``; fills that add

@@ -86,6 +86,7 @@ def buried(terms, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor
         room = _room(block, terms.outside[a], height, width, c.clear) if len(lifting) else None
         for unit, back in zip(lifting, against(sweep, center[lifting])):
             samples = order[starts[unit]:starts[unit + 1]]
+            samples = samples[values[samples] > 0]   # its ink (a turning thin mark's patch is most empty)
             alpha, pixel = values[samples], index[samples].long()
             steps = _fan(back, c.fan)
             found = _lift(block, alpha, pixel, np.array(steps), height, width, room, c)

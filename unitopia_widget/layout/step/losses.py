@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import torch
 
-from .strata import SCAN_BLOCK, RadialShadow, shadow
+from .strata import SCAN_BLOCK, RadialShadow, shadow, swept_along
 
 #: the share of empty samples (alpha 0) over which the loss, on a CPU, gathers and sums the
 #: inked samples alone: packing them costs a pass and three gathers, so a denser set sums
@@ -116,21 +116,26 @@ class CanvasTerms:
         device = self.penalty.device
         return tuple((sweep, torch.tensor(rows, device=device), tuple(rows)) for sweep, rows in groups.values())
 
-    def obstacles(self, own: torch.Tensor) -> torch.Tensor:
+    def obstacles(self, own: torch.Tensor, flat: torch.Tensor | None = None) -> torch.Tensor:
         """``O (L, S)`` from the coverage ``own (L, S)``: the ink of the layers each blocks
         on, and the shadow of those it rests on (see the module docstring). Where no layer
         sees another's ink itself (a stack), ``O`` is a buffer kept between calls, valid
-        until the next call: each resting layer's row is overwritten, the others stay 0."""
+        until the next call: each resting layer's row is overwritten, the others stay 0.
+        With ``flat (M,)`` (samples' indices into the stacked slabs): ``O`` at those alone,
+        ``(M,)``; the radial shadows are then resampled at the samples' pixels only."""
         like = (own.shape, own.dtype, own.device)
         if self._obstacle is None or self._obstacle[0] != like:
             # the zero slab is kept only where it is the obstacle (no blocks product)
             self._obstacle = (like, None if self.any_blocks else torch.zeros_like(own), {})
         # blocks is all zeros where every layer rests (a stack): skip its product
         obstacle = self.blocks.to(own) @ own if self.any_blocks else self._obstacle[1]
-        inks = self._obstacle[2]
+        inks, radial = self._obstacle[2], []
         for g, (sweep, layers, rows) in enumerate(self.sweep_groups):   # the resting layers
             h, w = self.shape
             rests = self.rests.index_select(0, layers).to(own)
+            if flat is not None and isinstance(sweep, RadialShadow):   # read at the samples below
+                radial.append((sweep, (rests @ own).clamp_(max=1.0), rows))
+                continue
             if sweep == (0, False) and h % SCAN_BLOCK:
                 # down the columns: the ink is written into zero rows padded to whole scan
                 # blocks, so the scan pads nothing; the swept rows are its first h
@@ -141,13 +146,19 @@ class CanvasTerms:
                 swept = shadow(inks[g], *sweep)[:, :h]
             else:
                 ink = (rests @ own).clamp_(max=1.0)
-                swept = self.swept(sweep, ink.view(len(rows), h, w))
+                swept = swept_along(sweep, ink.view(len(rows), h, w))
             for k, a in enumerate(rows):   # a row at a time: index_add_ over rows is slow on a CPU
                 if self.any_blocks:
                     obstacle[a] += swept[k].reshape(-1)
                 else:
                     obstacle[a].copy_(swept[k].reshape(-1))
-        return obstacle
+        if flat is None:
+            return obstacle
+        at = obstacle.reshape(-1).index_select(0, flat)
+        for sweep, ink, rows in radial:   # without blocks the buffer's row is stale: replaced
+            for k, a in enumerate(rows):
+                sweep.onto(at, ink[k].view(self.shape), a, flat, own.shape[1], add=self.any_blocks)
+        return at
 
     def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
         """``(S,)`` row ``a`` of ``obstacles(own)``, computed alone (one sweep, not ``L``)."""
@@ -155,14 +166,8 @@ class CanvasTerms:
         sweep = self.sweeps[a] if self.sweeps else None
         if self.rests is not None and sweep is not None and bool(self.rests[a].any()):
             ink = (self.rests[a].to(own) @ own).clamp_(max=1.0).view(self.shape)
-            obstacle = obstacle + self.swept(sweep, ink).reshape(-1)
+            obstacle = obstacle + swept_along(sweep, ink).reshape(-1)
         return obstacle
-
-    def swept(self, sweep, ink: torch.Tensor) -> torch.Tensor:
-        """``ink (..., H, W)`` swept along ``sweep`` (see ``sweeps``)."""
-        if isinstance(sweep, RadialShadow):   # made for one (H, W) slab
-            return torch.stack([sweep(one) for one in ink.reshape(-1, *self.shape)]).view(ink.shape)
-        return shadow(ink, *sweep)
 
     def coverage(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,
                  layer: torch.Tensor):
@@ -181,7 +186,7 @@ class CanvasTerms:
         total = cover.index_select(0, flat)
         n_layers, size = self.penalty.shape
         if n_layers > 1 and self.has_obstacles:
-            total += self.obstacles(cover.view(n_layers, size)).reshape(-1).index_select(0, flat)
+            total += self.obstacles(cover.view(n_layers, size), flat)
         return total
 
     def unit_overlap(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,

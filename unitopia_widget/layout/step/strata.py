@@ -127,7 +127,11 @@ class RadialShadow:
     along a ray, at most ``RAY_SPACING`` px apart across), swept in along each ray (a
     reversed ``accumulate``), and resampled back: each pixel reads its own point's rays. Samples
     on a point's rays that it does not see (``Radial.seeing``) read no ink. The sampling
-    grids are made once.
+    grids are made once. Only the ray samples that can read ink are taken (the point sees
+    them, and their bilinear taps reach the raster: about half of the rays' disc, which
+    reaches the raster's farthest corner); they are written into a kept buffer of the rays,
+    stored from the far end in, whose other samples stay 0. Called with ``at``, the swept
+    ink is resampled at those pixels alone (the loss reads it at its samples only).
     """
 
     def __init__(self, radial: Radial, shape, rho: float, pad: int, device):
@@ -151,8 +155,14 @@ class RadialShadow:
             canvas = np.stack([(u.numpy() - pad + 0.5) / rho, (v.numpy() - pad + 0.5) / rho], -1)
             owned.append(torch.from_numpy(radial.seeing(canvas.reshape(-1, 2))[:, k])
                          .reshape(u.shape))
-        self.to_rays = torch.cat(grids)[None].float().to(device)              # (1, K rays, n_r, 2)
-        self.owned = torch.cat(owned)[None, None].float().to(device)         # (1, 1, K rays, n_r)
+        grid = torch.cat(grids).flip(1)         # (K rays, n_r, 2): each ray from its far end in
+        u, v = ((grid[..., i] + 1) / 2 * (n - 1) for i, n in ((0, w), (1, h)))
+        taps = (u > -1.5) & (u < w + 0.5) & (v > -1.5) & (v < h + 0.5)   # beyond, all four read 0
+        kept = (torch.cat(owned).flip(1) & taps).reshape(-1)
+        self.kept = torch.nonzero(kept).reshape(-1).to(device)               # (k,) into the rays
+        self.to_kept = grid.reshape(-1, 2)[kept][None, None].float().to(device)   # (1, 1, k, 2)
+        self.n_r = n_r
+        self._rays = {}                         # (dtype, device) -> (K rays * n_r,) buffer
         # every pixel back to its own point's rays: (angle, radius) -> the rays' image
         vv, uu = torch.meshgrid(torch.arange(h, dtype=torch.float64),
                                 torch.arange(w, dtype=torch.float64), indexing="ij")
@@ -166,13 +176,38 @@ class RadialShadow:
         self.to_pixels = torch.stack([x, row / max(total - 1, 1) * 2 - 1], -1)[None] \
             .float().to(device)                                               # (1, H, W, 2)
 
-    def __call__(self, ink: torch.Tensor) -> torch.Tensor:
-        on_rays = F.grid_sample(ink[None, None], self.to_rays.to(ink.dtype), mode="bilinear",
-                                padding_mode="zeros", align_corners=True) * self.owned.to(ink)
-        swept = accumulate(on_rays.flip(-1), -1).flip(-1)                     # in to the point
-        back = F.grid_sample(swept, self.to_pixels.to(ink.dtype), mode="bilinear",
-                             padding_mode="border", align_corners=True)
-        return back[0, 0]
+    def __call__(self, ink: torch.Tensor, at: torch.Tensor | None = None) -> torch.Tensor:
+        """``ink (H, W)`` swept in to the points: ``(H, W)``, or ``(k,)`` at the flat
+        pixel indices ``at (k,)`` long."""
+        key = (ink.dtype, ink.device)
+        if key not in self._rays:
+            self._rays[key] = ink.new_zeros(len(self.radial.points) * self.rays * self.n_r)
+        rays = self._rays[key]
+        on_kept = F.grid_sample(ink[None, None], self.to_kept.to(ink.dtype), mode="bilinear",
+                                padding_mode="zeros", align_corners=True)
+        rays.index_copy_(0, self.kept, on_kept.reshape(-1))
+        # in to the point: the rays run from their far end, so a plain scan, then turned back
+        swept = accumulate(rays.view(1, 1, -1, self.n_r), -1).flip(-1)
+        grid = self.to_pixels if at is None else self.to_pixels.view(-1, 2).index_select(0, at)[None, None]
+        back = F.grid_sample(swept, grid.to(ink.dtype), mode="bilinear", padding_mode="border",
+                             align_corners=True)
+        return back[0, 0] if at is None else back.reshape(-1)
+
+    def onto(self, obstacle: torch.Tensor, ink: torch.Tensor, a: int, flat: torch.Tensor,
+             size: int, add: bool) -> None:
+        """Write (``add``: add) the shadow of ``ink (H, W)`` into ``obstacle (M,)`` at the
+        samples of ``flat (M,)`` (indices into stacked slabs of ``size`` px) in slab ``a``."""
+        mine = torch.nonzero((flat >= a * size) & (flat < (a + 1) * size)).reshape(-1)
+        swept = self(ink, at=flat.index_select(0, mine) - a * size)
+        (obstacle.index_add_ if add else obstacle.index_copy_)(0, mine, swept)
+
+
+def swept_along(sweep, ink: torch.Tensor) -> torch.Tensor:
+    """``ink (..., H, W)`` swept along ``sweep``: a raster axis ``(dim, reverse)`` (``shadow``)
+    or a ``RadialShadow`` (made for one ``(H, W)`` slab: each slab in turn)."""
+    if isinstance(sweep, RadialShadow):
+        return torch.stack([sweep(one) for one in ink.reshape(-1, *sweep.shape)]).view(ink.shape)
+    return shadow(ink, *sweep)
 
 
 def shadow_distance(xy: np.ndarray, sweep, centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
