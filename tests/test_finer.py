@@ -27,14 +27,16 @@ def test_bars_shrunk_under_a_raster_pixel_are_polished_again_on_a_finer_raster_a
     c = uw.Chart(df, mark=BAR, width="v", orientation="to_center", canvas=(400, 300), seed=1,
                  container=uw.Container.ellipse(*ELLIPSE), boundary="open", fill=0.8,
                  forces=[uw.DirectionalForce(270)])
+    steps = []
     with pytest.warns(UserWarning, match="more than its marks reach"):
-        c.layout()
+        c.layout(on_progress=lambda i, loss, stats: steps.append(i))
     measured = ink_metrics(c.to_svg(legend=False), c.canvas, ellipse=ELLIPSE)
     # on the first raster alone: 2.2% of the ink overlapped, the bars crossing in the middle
     assert measured["overlap"] < 0.01 and measured["outside"] < 0.005
     phases = c.result.phases
     assert phases.get("finer", 0) > 0, "polished once more on a finer raster"
     assert c.result.iterations == phases["settle"] + phases["polish"]   # both solves counted
+    assert steps == sorted(steps) and steps[-1] == c.result.iterations   # progress counts on
     laid = c.laid   # the raster it ended on sees the bars at the scale they ended at
     across = thin_across(laid.units, laid.result.unit_scale) * laid.problem.grid.rho
     assert across * finer.FINER >= THIN_ACROSS

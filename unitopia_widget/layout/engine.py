@@ -146,8 +146,9 @@ def layout(units: Units, layers, canvas, seed=0, device=None, on_frame=None, can
                                    pinned, pin_xy)
             problem = pin_problem(problem, units, layers, canvas, pinned, pin_xy, pin_angle)
             if finer.hidden(problem, result.stats):
+                counted = None if on_progress is None else finer.counting_on(on_progress, result)
                 base, result = fine, finer.joined(result, solve(
-                    problem, on_frame=record, cancel=cancel, on_progress=on_progress,
+                    problem, on_frame=record, cancel=cancel, on_progress=counted,
                     frame_every=frame_every, start_frame=False, settled=True))
     if result.iterations == 0 and early is None and abort is not None and abort():
         raise Cancelled("the layout was stopped before its first step")

@@ -58,6 +58,12 @@ def hidden(p: Problem, seen: dict, legal: LegalizeSettings = LegalizeSettings())
     return more > legal.final_overlap
 
 
+def counting_on(on_progress, first: Result):
+    """``on_progress`` for the solve on the finer raster: its iterations counted on from
+    ``first``'s, as ``joined`` counts them (a progress bar does not start again at 0)."""
+    return lambda iteration, loss, stats: on_progress(first.iterations + iteration, loss, stats)
+
+
 def joined(first: Result, second: Result) -> Result:
     """``second``, the solve on the finer raster, with ``first``'s iterations, seconds,
     phases and rules added (``phases["finer"]``: the second's iterations)."""
