@@ -27,6 +27,7 @@ ASPECT = 2.0          # box long / short side up to which a mark's disc stands f
 STEP = 0.3            # spot spacing, in median footprint radii
 MAX_SPOTS = 120_000   # spots per container at most (the spacing widens beyond)
 ROWS_FILL = 0.75      # rows of thin marks: spaced for this share of the room their length needs
+NECK = 0.5            # a row narrowing under this share of the depth it reaches on both sides: cut
 CHUNK = 4096          # spots scanned at once for the first that fits
 SPARSE = 0.5          # footprint share of a closed container below which marks spread over it
 
@@ -156,13 +157,28 @@ def _first(clear: np.ndarray, r: float, start: int, missing: int) -> int:
     return missing
 
 
-def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> np.ndarray:
+def necks(depth: np.ndarray) -> list:
+    """Where a row of a region narrows to a neck: the index of the least depth in each run
+    of ``depth (k,)`` (canvas px along the row) under ``NECK`` of the depth the row reaches
+    on both sides of it. None in a convex region, where the depth along a line rises to
+    one peak and falls."""
+    beside = np.minimum(np.maximum.accumulate(depth), np.maximum.accumulate(depth[::-1])[::-1])
+    narrow = np.diff(np.concatenate([[0], (depth < NECK * beside).astype(np.int8), [0]]))
+    return [int(a + np.argmin(depth[a:b]))
+            for a, b in zip(np.nonzero(narrow == 1)[0], np.nonzero(narrow == -1)[0])]
+
+
+def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float,
+         ranks: np.ndarray) -> np.ndarray:
     """Centres ``(n, 2)`` for thin marks laid along ``axis`` (radians) in rows across the
     region, like words in lines: rows evenly spaced over the region's whole breadth so the
     marks' total length fills the area, each mark, longest first, into the row span with the
     largest share of its length still free that holds its ``length (n,)`` (canvas px) and
-    whose depth holds half its ``width (n,)``; each span's marks spread evenly along it
-    (a span too full for its marks overfills, and the optimiser then parts them)."""
+    whose depth holds half its ``width (n,)``; each span's marks spread evenly along it in
+    their start order ``ranks (n,)`` (longest first, every row would grade from long to
+    short marks), a span too full for its marks overfilled (the optimiser then parts them).
+    A row is cut where it passes a neck (``necks``): a mark laid across one is pulled two
+    ways and pokes out there (joined discs, an hourglass)."""
     e1, e2 = np.array([math.cos(axis), math.sin(axis)]), np.array([-math.sin(axis), math.cos(axis)])
     ys, xs = np.nonzero(region.depth > 0)
     pixels = (np.stack([xs, ys], 1) + 0.5) / region.rho
@@ -176,10 +192,13 @@ def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> 
     u = np.arange(float(along.min()), float(along.max()) + step, step)
     spans = []   # [v, u start, length]
     for v in lo + gap * (np.arange(count) + 0.5):
-        inside = region.depth_at(mid + u[:, None] * e1 + v * e2) >= float(np.median(width)) / 2
+        depth = region.depth_at(mid + u[:, None] * e1 + v * e2)
+        inside = depth >= float(np.median(width)) / 2
         edge = np.diff(np.concatenate([[0], inside.astype(np.int8), [0]]))
         for a, b in zip(np.nonzero(edge == 1)[0], np.nonzero(edge == -1)[0]):
-            spans.append([v, u[a], (b - a) * step])
+            cuts = [a, *(a + k for k in necks(depth[a:b])), b]
+            for a0, b0 in zip(cuts[:-1], cuts[1:]):
+                spans.append([v, u[a0], (b0 - a0) * step])
     if not spans:
         raise ValueError("container: no row inside it to lay thin marks along")
     spans = np.array(spans)
@@ -196,7 +215,7 @@ def rows(region: Region, length: np.ndarray, width: np.ndarray, axis: float) -> 
     for (v, start, _), mine, left in zip(spans, members, room):
         free = left / max(len(mine), 1)      # the room left, shared out between the marks
         at = start + free / 2
-        for i in mine:
+        for i in sorted(mine, key=lambda i: ranks[i]):
             centers[i] = mid + (at + length[i] / 2) * e1 + v * e2
             at += length[i] + free
     return centers

@@ -158,7 +158,7 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         hw, hh = units.half_w[idx] * scale[idx], units.half_h[idx] * scale[idx]
         band = footprint(units.margin[idx])
         return rows(region, 2 * np.maximum(hw, hh) * band, 2 * np.minimum(hw, hh) * band,
-                    region.axis())
+                    region.axis(), ranks)
     if packable(r, units.half_w[idx], units.half_h[idx]) or key in packings:
         if key not in packings:
             packings[key] = Packing(region, STEP * float(np.median(r)), reach)
