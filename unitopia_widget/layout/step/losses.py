@@ -155,9 +155,8 @@ class CanvasTerms:
         if flat is None:
             return obstacle
         at = obstacle.reshape(-1).index_select(0, flat)
-        for sweep, ink, rows in radial:   # without blocks the buffer's row is stale: replaced
-            for k, a in enumerate(rows):
-                sweep.onto(at, ink[k].view(self.shape), a, flat, own.shape[1], add=self.any_blocks)
+        for sweep, ink, rows in radial:   # without blocks the buffer's rows are stale: replaced
+            sweep.onto(at, ink, rows, flat, add=self.any_blocks)
         return at
 
     def obstacle(self, own: torch.Tensor, a: int) -> torch.Tensor:
@@ -185,8 +184,10 @@ class CanvasTerms:
         ``cover (L * S,)`` and the samples' indices into it ``flat (M,)``."""
         total = cover.index_select(0, flat)
         n_layers, size = self.penalty.shape
-        if n_layers > 1 and self.has_obstacles:
+        if n_layers > 1 and self.has_obstacles and cover.device.type == "cpu":
             total += self.obstacles(cover.view(n_layers, size), flat)
+        elif n_layers > 1 and self.has_obstacles:   # a GPU: whole slabs, no count read back
+            total += self.obstacles(cover.view(n_layers, size)).reshape(-1).index_select(0, flat)
         return total
 
     def unit_overlap(self, values: torch.Tensor, index: torch.Tensor, owner: torch.Tensor,

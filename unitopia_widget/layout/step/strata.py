@@ -193,13 +193,16 @@ class RadialShadow:
                              align_corners=True)
         return back[0, 0] if at is None else back.reshape(-1)
 
-    def onto(self, obstacle: torch.Tensor, ink: torch.Tensor, a: int, flat: torch.Tensor,
-             size: int, add: bool) -> None:
-        """Write (``add``: add) the shadow of ``ink (H, W)`` into ``obstacle (M,)`` at the
-        samples of ``flat (M,)`` (indices into stacked slabs of ``size`` px) in slab ``a``."""
-        mine = torch.nonzero((flat >= a * size) & (flat < (a + 1) * size)).reshape(-1)
-        swept = self(ink, at=flat.index_select(0, mine) - a * size)
-        (obstacle.index_add_ if add else obstacle.index_copy_)(0, mine, swept)
+    def onto(self, obstacle: torch.Tensor, ink: torch.Tensor, slabs, flat: torch.Tensor,
+             add: bool) -> None:
+        """Write (``add``: add) the shadow of each ``ink (R, H * W)`` row into ``obstacle
+        (M,)`` at the samples of ``flat (M,)`` (indices into stacked ``(H, W)`` slabs) in its
+        slab of ``slabs (R,)``."""
+        size = self.shape[0] * self.shape[1]
+        for one, a in zip(ink, slabs):
+            mine = torch.nonzero((flat >= a * size) & (flat < (a + 1) * size)).reshape(-1)
+            swept = self(one.view(self.shape), at=flat.index_select(0, mine) - a * size)
+            (obstacle.index_add_ if add else obstacle.index_copy_)(0, mine, swept)
 
 
 def swept_along(sweep, ink: torch.Tensor) -> torch.Tensor:
