@@ -10,7 +10,7 @@ import pytest
 
 import unitopia_widget as uw
 from unitopia_widget.layout.prepare.bind import bind
-from unitopia_widget.layout.shortfall import warn_unreached_fill
+from unitopia_widget.layout.shortfall import warn_curve_held, warn_unreached_fill
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -93,3 +93,35 @@ def test_one_mark_that_caps_a_closed_scale_is_named_with_its_row_value_and_range
     assert "height_range=(min_px, max_px)" in capped[0] and "size_range" not in capped[0]
     covered = float(capped[0].split("the marks cover ")[1].split("%")[0])
     assert covered < 25
+
+
+def curve_chart(mode: str, boundary: str):
+    """Sixty discs tied to a 200 px curve along the top of a 360 x 250 box."""
+    top = [[100, 50], [180, 50], [220, 50], [300, 50]]
+    return uw.Chart(pd.DataFrame({"v": np.ones(60)}), mark="circle", size="v",
+                    emitter=uw.CurveEmitter(top, mode=mode), boundary=boundary,
+                    fill=0.4 if boundary == "open" else None,
+                    container=uw.Container.rect(20, 40, 360, 250), canvas=(400, 300))
+
+
+@pytest.mark.parametrize("mode", ["line", "band", "free"])
+def test_marks_tied_to_a_curve_too_short_for_them_are_named_with_the_curve(mode):
+    # at fill 0.4 each disc would be about 28 px across: 60 of them end to end need 1,650 px of a
+    # 200 px curve; drawn at a sixth of that size
+    c = curve_chart(mode, "open")
+    units = bind(c.df, c.layers)
+    out = said(lambda: warn_unreached_fill(units, c.layers, c.canvas, np.full(60, 4.0)))
+    assert len(out) == 1, out
+    tied = f"are tied to its emitter's curve (mode={mode!r}), 200 px long, which holds them " \
+        "end to end only at 12% of that size"
+    assert (tied in out[0]) == (mode != "free"), out
+    assert ("mode='free'" in out[0]) == (mode != "free")
+    closed = curve_chart(mode, "closed")
+    units = bind(closed.df, closed.layers)
+    out = said(lambda: warn_curve_held(units, closed.layers, closed.canvas, np.full(60, 4.0)))
+    assert len(out) == (mode != "free"), out
+    if out:
+        assert "the marks cover 1% of their closed container" in out[0] and \
+            f"(mode={mode!r}), 200 px long" in out[0] and "Use CurveEmitter(mode='free')" in out[0]
+    out = said(lambda: warn_curve_held(units, closed.layers, closed.canvas, np.full(60, 40.0)))
+    assert out == []                      # a full container: nothing to say

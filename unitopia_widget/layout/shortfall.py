@@ -1,6 +1,7 @@
 """What a layout could not give, said after the solve: an open container whose marks do not
 reach the fill asked of it, and a closed container left empty because its largest mark caps
-the scale. Read from the final scales (``Result.unit_scale``); warnings only, nothing moves."""
+the scale or because its marks are tied to an emitter's curve too short to hold them. Read
+from the final scales (``Result.unit_scale``); warnings only, nothing moves."""
 from __future__ import annotations
 
 import math
@@ -21,6 +22,7 @@ EMPTY = 0.5       # a closed container whose footprints cover under this share i
 CAPPED = 0.8      # a final scale at least this share of a layer's cap (its longest mark in the
 #                   container's widest disc) is held by that mark
 OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
+FREE_HELP = "use CurveEmitter(mode='free') so that the curve only places the marks"
 
 
 def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
@@ -52,6 +54,9 @@ def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
                        f"{discs:.0%} of it, and discs pack into at most {MAX_COVER:.0%}")
         if slender:
             why.append("long thin marks jam across each other before they pack side by side")
+        held = held_by_curve(units, layers, members, at_ask)
+        if held:
+            why.append(held)
         size = math.sqrt(covered / asked)
         drawn = f"the marks were drawn at {size:.0%} of the size that fill asks, where they " \
             f"neither overlap nor poke out"
@@ -59,12 +64,50 @@ def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
         names = ("layers " if len(members) > 1 else "layer ") + \
             ", ".join(repr(layers[i].name) for i in members)
         helps = [f"lower fill= (to about {covered:.2g})"] + (["lower margin="] if margin > 0 else []) \
-            + ["give the marks a wider container",
-               "or use boundary='closed' to fill it as far as they pack"]
+            + ([FREE_HELP] if held else []) + ["give the marks a wider container",
+                                                "or use boundary='closed' to fill it as far as they pack"]
         helps = ", ".join(helps)
         warnings.warn(f"{names}: fill={asked:g} is more than its marks reach in the container; "
                       f"laid out at fill={covered:.2g}: {because}. {helps[0].upper()}{helps[1:]}",
                       stacklevel=3)
+
+
+def held_by_curve(units, layers, members, scale: float) -> str | None:
+    """Why marks of the layers ``members`` tied to their emitter's curve (mode "line" or
+    "band": they keep their order along it) stay small: end to end at ``scale`` (px per
+    unit side: the size their container asks), their footprints would need more than the
+    curve's length (layers on one curve together); None where every curve holds its marks."""
+    curves = {}   # (the curve's points, mode) -> (length, layer names, px the marks need)
+    for i in members:
+        emitter = layers[i].emitter
+        if getattr(emitter, "mode", "free") == "free":
+            continue
+        key = (emitter.curve.points.tobytes(), emitter.mode)
+        length, names, need = curves.get(key, (emitter.curve.length, [], 0.0))
+        need += 2 * float(footprint_radius(units)[units.layer == i].sum()) * scale
+        curves[key] = (length, names + [repr(layers[i].name)], need)
+    held = [f"the marks of layer{'s' * (len(names) > 1)} {', '.join(names)} are tied to "
+            f"{'their' if len(names) > 1 else 'its'} emitter's curve (mode={mode!r}), "
+            f"{length:.0f} px long, which holds them end to end only at {length / need:.0%} "
+            f"of that size" for (_, mode), (length, names, need) in curves.items() if need > length]
+    return "; ".join(held) or None
+
+
+def warn_curve_held(units, layers, canvas, unit_scale: np.ndarray) -> None:
+    """Warn for each closed container whose marks' footprints, at their final scales
+    ``unit_scale (N,)``, cover under ``EMPTY`` of it while some of them are tied to a curve
+    too short to hold them end to end at the size that would fill it (``held_by_curve``)."""
+    for members in by_container(layers, lambda layer: layer.boundary == "closed"):
+        mine = np.isin(units.layer, members)
+        area = layers[members[0]].region.area(canvas)
+        foot = units.area * footprint(units.margin) ** 2
+        covered = float((foot[mine] * unit_scale[mine] ** 2).sum()) / area
+        fill = math.sqrt(MAX_COVER * area / float(foot[mine].sum()))   # px per unit side
+        held = held_by_curve(units, layers, members, fill) if covered < EMPTY else None
+        if held:
+            warnings.warn(f"the marks cover {covered:.0%} of their closed container: {held}. "
+                          f"{FREE_HELP[0].upper()}{FREE_HELP[1:]}, or give it a longer curve",
+                          stacklevel=3)
 
 
 def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
