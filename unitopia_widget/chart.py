@@ -15,7 +15,7 @@ import pandas as pd
 from .layout import engine
 from .layout.prepare.bind import bind
 from .layout.prepare.tally import mark_titles
-from .layout.shortfall import warn_capped_scale, warn_curve_held, warn_unreached_fill
+from .layout.shortfall import warn_shortfalls
 from .layout.prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, overfilled
 from .design.encodings import (NUMERIC_CHANNELS, check_column, invalid_rows, sorted_unique,
                                titles as row_titles, tooltip_fields, warn_small_marks)
@@ -288,10 +288,7 @@ class Chart(Piling, HandControl):
         self.laid = laid
         self._remember_run(origin, inputs, laid.units, laid.result)
         if not laid.result.cancelled:
-            warn_unreached_fill(laid.units, self.layers, self.canvas, laid.result.unit_scale)
-            warn_capped_scale(laid.units, self.layers, self.canvas, laid.result.unit_scale,
-                              self.df)
-            warn_curve_held(laid.units, self.layers, self.canvas, laid.result.unit_scale)
+            warn_shortfalls(laid.units, self.layers, self.canvas, laid.result.unit_scale, self.df)
             warn_small_marks(laid.placements, self.layers)
         return laid.placements
 

@@ -22,7 +22,30 @@ EMPTY = 0.5       # a closed container whose footprints cover under this share i
 CAPPED = 0.8      # a final scale at least this share of a layer's cap (its longest mark in the
 #                   container's widest disc) is held by that mark
 OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
+STACK = 4         # warnings point at the user's call: warn_* <- warn_shortfalls <- Chart.layout <- it
 FREE_HELP = "use CurveEmitter(mode='free') so that the curve only places the marks"
+
+
+def warn_shortfalls(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
+    """Every warning of this module for a layout of ``units`` at its final scales
+    ``unit_scale (N,)``; ``df``: the rows, by index label (``warn_capped_scale``)."""
+    warn_unreached_fill(units, layers, canvas, unit_scale)
+    warn_capped_scale(units, layers, canvas, unit_scale, df)
+    warn_curve_held(units, layers, canvas, unit_scale)
+
+
+def emptied(units, layers, canvas, unit_scale: np.ndarray):
+    """Each closed container whose marks' footprints, at ``unit_scale (N,)``, cover under
+    ``EMPTY`` of it: ``(members, mine (N,) bool, covered, full)``, its layers, their units,
+    the share covered and the px per unit side at which the footprints would cover
+    ``MAX_COVER`` of it."""
+    foot = units.area * footprint(units.margin) ** 2
+    for members in by_container(layers, lambda layer: layer.boundary == "closed"):
+        mine = np.isin(units.layer, members)
+        area = layers[members[0]].region.area(canvas)
+        covered = float((foot[mine] * unit_scale[mine] ** 2).sum()) / area
+        if covered < EMPTY:
+            yield members, mine, covered, math.sqrt(MAX_COVER * area / float(foot[mine].sum()))
 
 
 def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
@@ -69,7 +92,7 @@ def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
         helps = ", ".join(helps)
         warnings.warn(f"{names}: fill={asked:g} is more than its marks reach in the container; "
                       f"laid out at fill={covered:.2g}: {because}. {helps[0].upper()}{helps[1:]}",
-                      stacklevel=3)
+                      stacklevel=STACK)
 
 
 def held_by_curve(units, layers, members, scale: float) -> str | None:
@@ -78,13 +101,14 @@ def held_by_curve(units, layers, members, scale: float) -> str | None:
     unit side: the size their container asks), their footprints would need more than the
     curve's length (layers on one curve together); None where every curve holds its marks."""
     curves = {}   # (the curve's points, mode) -> (length, layer names, px the marks need)
+    radius = footprint_radius(units)
     for i in members:
         emitter = layers[i].emitter
         if getattr(emitter, "mode", "free") == "free":
             continue
         key = (emitter.curve.points.tobytes(), emitter.mode)
         length, names, need = curves.get(key, (emitter.curve.length, [], 0.0))
-        need += 2 * float(footprint_radius(units)[units.layer == i].sum()) * scale
+        need += 2 * float(radius[units.layer == i].sum()) * scale
         curves[key] = (length, names + [repr(layers[i].name)], need)
     held = [f"the marks of layer{'s' * (len(names) > 1)} {', '.join(names)} are tied to "
             f"{'their' if len(names) > 1 else 'its'} emitter's curve (mode={mode!r}), "
@@ -97,17 +121,12 @@ def warn_curve_held(units, layers, canvas, unit_scale: np.ndarray) -> None:
     """Warn for each closed container whose marks' footprints, at their final scales
     ``unit_scale (N,)``, cover under ``EMPTY`` of it while some of them are tied to a curve
     too short to hold them end to end at the size that would fill it (``held_by_curve``)."""
-    for members in by_container(layers, lambda layer: layer.boundary == "closed"):
-        mine = np.isin(units.layer, members)
-        area = layers[members[0]].region.area(canvas)
-        foot = units.area * footprint(units.margin) ** 2
-        covered = float((foot[mine] * unit_scale[mine] ** 2).sum()) / area
-        fill = math.sqrt(MAX_COVER * area / float(foot[mine].sum()))   # px per unit side
-        held = held_by_curve(units, layers, members, fill) if covered < EMPTY else None
+    for members, _, covered, full in emptied(units, layers, canvas, unit_scale):
+        held = held_by_curve(units, layers, members, full)
         if held:
             warnings.warn(f"the marks cover {covered:.0%} of their closed container: {held}. "
                           f"{FREE_HELP[0].upper()}{FREE_HELP[1:]}, or give it a longer curve",
-                          stacklevel=3)
+                          stacklevel=STACK)
 
 
 def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
@@ -115,15 +134,9 @@ def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None
     cover under ``EMPTY`` of it because one mark, ``OUTLIER`` times the median or longer,
     holds the scale at its cap: the row, its value in the bound size channels (from ``df``,
     the rows by index label), the sizes drawn, and the ``*_range=`` that would help."""
-    for members in by_container(layers, lambda layer: layer.boundary == "closed"):
+    for members, mine, covered, _ in emptied(units, layers, canvas, unit_scale):
         if any(layers[i].fill is not None for i in members):
             continue   # a fixed scale: the fill asked for, not a cap
-        mine = np.isin(units.layer, members)
-        area = layers[members[0]].region.area(canvas)
-        foot = units.area * footprint(units.margin) ** 2
-        covered = float((foot[mine] * unit_scale[mine] ** 2).sum()) / area
-        if covered >= EMPTY:
-            continue
         long = 2 * np.maximum(units.half_w, units.half_h) * unit_scale   # px
         for i in members:
             at = units.layer == i
@@ -146,7 +159,7 @@ def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None
                           f"({median:.2g} px), so the marks cover {covered:.0%} of the closed "
                           f"container and leave the rest empty. Map the column onto a range of "
                           f"drawn sizes ({ranges}), bind a log-scaled column (np.log1p), or "
-                          f"leave the row out", stacklevel=3)
+                          f"leave the row out", stacklevel=STACK)
 
 
 def _shown(value) -> str:
