@@ -35,7 +35,7 @@ import numpy as np
 import torch
 
 from ..design.encodings import footprint
-from .prepare.assemble import room_reach
+from .prepare.assemble import padded_margin, room_reach
 from .prepare.pins import pin_problem
 from .prepare.problem import Problem
 from .prepare.start import footprint_radius
@@ -86,7 +86,8 @@ def rebase(base: Problem, units, layers) -> Problem | None:
             or len(base.sprite_sides) != len(units.sprites)):
         return None
     unit_scale = base.group_scales()[base.layer_groups()[units.layer]]
-    band = footprint(units.margin)
+    margin = padded_margin(units, unit_scale, base.unseen)   # the base raster's unseen depth
+    band = footprint(margin)
     terms = dataclasses.replace(
         base.terms, norm=float((units.area * band ** 2 * unit_scale ** 2).sum()) * base.grid.rho ** 2,
         sums=None, _cover=None, _tables=None, _rows=None, _onehot=None, _obstacle=None)
@@ -95,7 +96,7 @@ def rebase(base: Problem, units, layers) -> Problem | None:
                           np.array([layers[li].rotate for li in units.layer], bool), base.device)
     return dataclasses.replace(
         base, sprite=units.sprite, layer=units.layer, half_w=units.half_w, half_h=units.half_h,
-        margin=units.margin, placement=placement, terms=terms, reach=room_reach(units),
+        margin=margin, placement=placement, terms=terms, reach=room_reach(units),
         disc=footprint_radius(units), ink_share=units.ink_share, stage=None, travelling=False)
 
 

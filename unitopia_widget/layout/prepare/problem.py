@@ -41,7 +41,10 @@ class Problem:
     max_iterations: int = 600      # the iteration cap (the layers' iterations=)
     ink_share: np.ndarray | None = None  # (N,) ink area / footprint area, < 1 for hollow marks; None: all 1
     resolved: bool = False         # every mark solid and TARGET_RADIUS raster px across or more at the
-                                   # start: no contact is finer than the raster (rules.decay)
+                                   # start (a capped raster: at the resolution aimed at, ``unseen``
+                                   # making up the rest): no contact is finer than the raster (rules.decay)
+    unseen: float = 0.0            # canvas px the margins add to every footprint's side for a
+                                   # capped raster (assemble.unseen_depth)
     device: str = "cpu"
     regions: tuple = ()            # per layer: its allowed region (a design Container), for contacts.clear
 
