@@ -5,21 +5,10 @@ placed by emitters and pulled by forces, by a differentiable rasterizer
 (the contain-and-fill model of UnitoPia).
 """
 import os
-import sys
 
-# PyTorch's OpenMP threads wait for the next parallel op actively for a while, then sleep.
-# A notebook kernel (Jupyter, marimo) shares its cores with the browser and runs layouts
-# beside the threads that answer it: there idle threads sleep at once (a passive policy;
-# JupyterLab, 1,000 marks: a run of 2.5 s took 6.2 s with threads that wait actively). A
-# script's layout gains from the wait, its ops a fraction of a millisecond apart (Table 1,
-# 1,000 discs, two threads: 0.42 -> 0.29 s): threads spin about 4 ms after the last op
-# (libgomp's default is twice that), then sleep. Must precede torch's import; a policy the
-# user set is kept.
-if "OMP_WAIT_POLICY" not in os.environ:
-    if {"ipykernel", "marimo"} & set(sys.modules):
-        os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
-    else:
-        os.environ.setdefault("GOMP_SPINCOUNT", "100000")
+# PyTorch's OpenMP threads busy-wait by default; a notebook kernel shares its
+# cores with the browser, so let idle threads sleep (must precede torch's import).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from .chart import Chart  # noqa: E402
 from .design.containers import Container  # noqa: E402
