@@ -31,6 +31,7 @@ from .step.optim import Adam
 from .step.placement import frame
 from .step.raster import Planner, render_samples
 from .step.scales import Scales
+from .step import threads
 from .step.transfer import Readback, upload
 
 
@@ -79,7 +80,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev,
                       p.sprite_aspects)
     n_layers = p.terms.penalty.shape[0]
-    readback, plan, sample_layer = Readback(dev), None, None
+    readback = Readback(dev)
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
                     for a, fs in enumerate(p.forces) if fs]
     # marks stay on the canvas with all their ink (rotating ones with their box's circle)
@@ -101,45 +102,49 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     if on_frame is not None and start_frame:   # the start: shown before the first steps
         on_frame(frame(place, ctl.unit_scale()))
     cancelled = False
-    while not s.done:
-        if cancel is not None and cancel():
-            cancelled = True
-            break
-        unit_scale = ctl.unit_scale()
-        scale = upload(unit_scale, dev)
-        center, angle = place.transforms()
-        hw, hh = scale * half_w0, scale * half_h0
-        if planner.plan_for(foot_w * unit_scale, foot_h * unit_scale) is not plan:
-            plan = planner.current
-            sample_layer = layer_t[plan.owner] if n_layers > 1 else None
-        values, index, owner = render_samples(center, angle, hw, hh, plan, p.pyramids, p.grid)
-        # the containment tables are read only at the marks whose patch meets the border
-        loss = CanvasLoss.apply(values, index, sample_layer, p.terms, p.terms.border(index, plan, layer_t))
-        if s.phase == "polish":   # legalising rounds: no force presses the marks together
-            weight = steps.force_weight * steps.polish_force * (s.rounds == 0)
-        else:   # a strong pull carries marks through jams; a gentle one lets piles settle
-            weight = steps.force_travel if s.travelling else steps.force_weight
-        for members, fs in force_layers:
-            loss = loss + weight * potential(fs, center[members]).mean() / radius
-        if p.anchor is not None:
-            loss = loss + p.anchor.loss(center)
-        loss = loss + place.penalty()
-        optimizer.zero_grad(set_to_none=True)
-        loss.backward()
-        optimizer.step()
-        place.project(p.grid.canvas, s.iteration, ink_t * scale[:, None])
-        s.iteration += 1
-        # the loss and the per-layer sums, on a GPU those of the iteration before (no stall)
-        readings = readback.push(torch.cat([loss.detach().reshape(1), p.terms.sums.reshape(-1)]))
-        s.loss_value, sums = float(readings[0]), readings[1:].reshape(4, n_layers).astype(float)
-        s.stats = shares(sums.sum(1), p.terms.inside_total)
-        if on_frame is not None and s.iteration % frame_every == 0:
-            on_frame(frame(place, ctl.unit_scale()))
-        if on_progress is not None:
-            on_progress(s.iteration, s.loss_value, {**s.stats, "phase": s.phase})
-        s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
-        s.values, s.index, s.owner = values, index, owner
-        run(s)
+    # the first plan is made before the loop: its samples decide the threads the passes use
+    plan = planner.plan_for(foot_w * ctl.unit_scale(), foot_h * ctl.unit_scale())
+    sample_layer = layer_t[plan.owner] if n_layers > 1 else None
+    with threads.fitted(len(plan.owner), dev):
+        while not s.done:
+            if cancel is not None and cancel():
+                cancelled = True
+                break
+            unit_scale = ctl.unit_scale()
+            scale = upload(unit_scale, dev)
+            center, angle = place.transforms()
+            hw, hh = scale * half_w0, scale * half_h0
+            if planner.plan_for(foot_w * unit_scale, foot_h * unit_scale) is not plan:
+                plan = planner.current
+                sample_layer = layer_t[plan.owner] if n_layers > 1 else None
+            values, index, owner = render_samples(center, angle, hw, hh, plan, p.pyramids, p.grid)
+            # the containment tables are read only at the marks whose patch meets the border
+            loss = CanvasLoss.apply(values, index, sample_layer, p.terms, p.terms.border(index, plan, layer_t))
+            if s.phase == "polish":   # legalising rounds: no force presses the marks together
+                weight = steps.force_weight * steps.polish_force * (s.rounds == 0)
+            else:   # a strong pull carries marks through jams; a gentle one lets piles settle
+                weight = steps.force_travel if s.travelling else steps.force_weight
+            for members, fs in force_layers:
+                loss = loss + weight * potential(fs, center[members]).mean() / radius
+            if p.anchor is not None:
+                loss = loss + p.anchor.loss(center)
+            loss = loss + place.penalty()
+            optimizer.zero_grad(set_to_none=True)
+            loss.backward()
+            optimizer.step()
+            place.project(p.grid.canvas, s.iteration, ink_t * scale[:, None])
+            s.iteration += 1
+            # the loss and the per-layer sums, on a GPU those of the iteration before (no stall)
+            readings = readback.push(torch.cat([loss.detach().reshape(1), p.terms.sums.reshape(-1)]))
+            s.loss_value, sums = float(readings[0]), readings[1:].reshape(4, n_layers).astype(float)
+            s.stats = shares(sums.sum(1), p.terms.inside_total)
+            if on_frame is not None and s.iteration % frame_every == 0:
+                on_frame(frame(place, ctl.unit_scale()))
+            if on_progress is not None:
+                on_progress(s.iteration, s.loss_value, {**s.stats, "phase": s.phase})
+            s.overlap_g, s.outside_g = ctl.crowding(sums[:3])
+            s.values, s.index, s.owner = values, index, owner
+            run(s)
     if not cancelled:
         s.phase = "finish"
         run(s)
