@@ -11,7 +11,6 @@ sizes at random spots of that room, unless ``order=`` asks for its order there
 """
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import dataclass, field
 
@@ -28,11 +27,10 @@ from ..step.placement import DRIFT_DECAY
 from ..step.strata import Radial, shadow, shadow_distance, sweep_of
 from .lattice import Region, container_region, fitting_lattice, grid_spacing
 from .pack import SPARSE, STEP, Packing, packable, rows, thin
+from .scatter import pressed, scattered
 
 DRIFT_SPEED = 0.5   # drift at speed 1, in mean footprint radii per iteration
 DRIFT_TRAVEL = DRIFT_SPEED / (1 - DRIFT_DECAY)   # the whole decaying drift, in mean radii
-WIDEN = 1.1         # a pile's scattered start widens its room by this share of spots at a time,
-BEYOND = 0.05       # while more than this share of its marks find no random spot in it
 
 
 @dataclass
@@ -167,7 +165,11 @@ def _still(layer, units, idx, region, r, ranks, scale, taken, packings, key, rea
         cost = spot_cost(layer, container, canvas, pack.points)
         # too few to fill it (a shared scale held by a fuller container): spread over it
         sparse = closed_fill(layer) and float((math.pi * r ** 2).sum()) < SPARSE * region.area
-        return pack_layer(pack, layer, r, cost, ranks, later, generator, sparse)[0]
+        center = pack_layer(pack, layer, r, cost, ranks, later, generator, sparse)[0]
+        if layer.forces and not closed_fill(layer) and layer.encodings["order"] is None \
+                and not later and not len(taken[0]):   # a scattered pile alone in its container
+            return pressed(center, r, region, layer.forces)
+        return center
     return _settled(region, r, ranks, layer, taken[0], container, canvas)
 
 
@@ -189,39 +191,6 @@ def pack_layer(pack, layer, r, cost, ranks, later, generator, sparse=False, unti
         return pack.place(r, cost, ranks, largest_first=False, later=later, until_miss=until_miss)
     return pack.place(r, scattered(pack, r, cost, ranks, closed_fill(layer), later, generator),
                       ranks, later=later, until_miss=until_miss)
-
-
-def scattered(pack, r, cost, ranks, fill: bool, later: float, generator) -> np.ndarray:
-    """``(M,)`` a cost per spot of ``pack`` that starts marks ``r (n,)``, placed largest first,
-    at random spots (drawn from ``generator``) of the room they take, small ones into the
-    gaps the large ones leave: sizes and the rows' order do not show in where marks start.
-    The room: the whole container to ``fill``; for a pile, the spots the marks take packed
-    in ``ranks`` order from the ``cost``-cheapest out (where the forces gather them), widened
-    by ``WIDEN`` of its spots at a time until all but ``BEYOND`` of the marks find a random
-    spot in it (discs at random spots jam near 0.55 of an area, packed ones near 0.85:
-    near-equal sizes need a wider room, while small ones fill a wide spread's gaps; left
-    beyond it, the last and smallest marks ringed the pile), unless layers placed after it
-    (``later`` > 0: strata resting on it) start beyond it; spots beyond it follow in
-    ``cost`` order, for what the room does not hold."""
-    draw = torch.rand(len(cost), generator=generator, dtype=torch.float64).numpy()
-    if fill:
-        return draw
-    trial = copy.copy(pack)
-    trial.clear = pack.clear.copy()
-    taken = trial.place(r, cost, ranks, largest_first=False, later=later)[0]
-    ladder = np.sort(cost)
-    room = int(np.searchsorted(ladder, cost[pack.tree.query(taken)[1]].max(), side="right"))
-    while True:
-        edge = float(ladder[min(room, len(ladder)) - 1])
-        beyond = 1.0 + (cost - edge) / max(float(np.ptp(cost)), 1e-12)
-        spots = np.where(cost <= edge, draw, beyond)
-        if room >= len(ladder) or later > 0:   # layers to come start beyond its exact room
-            return spots
-        trial.clear = pack.clear.copy()
-        at = trial.place(r, spots, ranks, later=later)[0]
-        if (cost[pack.tree.query(at)[1]] > edge).mean() <= BEYOND:
-            return spots
-        room = max(room + 1, int(room * WIDEN))   # a room of under 10 spots grows too
 
 
 def emitted(emitter, region: Region, r: np.ndarray, ranks: np.ndarray, taken):
