@@ -5,6 +5,8 @@ difference; drawn marks keep their size."""
 from __future__ import annotations
 
 import math
+import pathlib
+import sys
 
 import numpy as np
 import pandas as pd
@@ -16,6 +18,9 @@ from unitopia_widget.design.encodings import footprint
 from unitopia_widget.layout.prepare import assemble
 from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.reflow import rebase
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "benchmarks"))
+import discs  # noqa: E402
 
 CAP = 120_000   # raster px: a 400 x 300 canvas at 1 raster px per canvas px, not the 3.6 aimed at
 
@@ -31,12 +36,7 @@ def disc_overlap(placements: pd.DataFrame) -> float:
     """The exact pairwise overlap of the drawn discs, a share of their area."""
     c, r = placements[["x", "y"]].to_numpy(float), placements["width"].to_numpy(float) / 2
     i, j = cKDTree(c).query_pairs(2 * float(r.max()), output_type="ndarray").T
-    d, a, b = np.hypot(*(c[i] - c[j]).T), r[i], r[j]
-    near = d < a + b
-    d, a, b = d[near], a[near], b[near]
-    lens = (a * a * np.arccos(np.clip((d * d + a * a - b * b) / (2 * d * a), -1, 1))
-            + b * b * np.arccos(np.clip((d * d + b * b - a * a) / (2 * d * b), -1, 1))
-            - 0.5 * np.sqrt(np.maximum((-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b), 0)))
+    lens = discs.lens_area(np.hypot(*(c[i] - c[j]).T), r[i], r[j])
     return float(lens.sum() / np.sum(math.pi * r * r))
 
 

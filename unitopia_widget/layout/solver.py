@@ -80,7 +80,7 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     planner = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, dev,
                       p.sprite_aspects)
     n_layers = p.terms.penalty.shape[0]
-    readback = Readback(dev)
+    readback, plan, sample_layer = Readback(dev), None, None
     force_layers = [(torch.nonzero(layer_t == a).reshape(-1), fs)
                     for a, fs in enumerate(p.forces) if fs]
     # marks stay on the canvas with all their ink (rotating ones with their box's circle)
@@ -102,10 +102,9 @@ def solve(problem: Problem, on_frame: Callable | None = None, frame_every: int =
     if on_frame is not None and start_frame:   # the start: shown before the first steps
         on_frame(frame(place, ctl.unit_scale()))
     cancelled = False
-    # the first plan is made before the loop: its samples decide the threads the passes use
-    plan = planner.plan_for(foot_w * ctl.unit_scale(), foot_h * ctl.unit_scale())
-    sample_layer = layer_t[plan.owner] if n_layers > 1 else None
-    with threads.fitted(len(plan.owner), dev):
+    # the first plan's samples decide the threads the passes use (the loop finds it kept)
+    first = planner.plan_for(foot_w * ctl.unit_scale(), foot_h * ctl.unit_scale())
+    with threads.fitted(len(first.owner), dev):
         while not s.done:
             if cancel is not None and cancel():
                 cancelled = True
