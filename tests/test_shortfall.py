@@ -92,7 +92,25 @@ def test_one_mark_that_caps_a_closed_scale_is_named_with_its_row_value_and_range
     assert f"row 'r7' (height={value:.4g})" in capped[0]
     assert "height_range=(min_px, max_px)" in capped[0] and "size_range" not in capped[0]
     covered = float(capped[0].split("the marks cover ")[1].split("%")[0])
-    assert covered < 25
+    empty = float(capped[0].split("and leave ")[1].split("%")[0])
+    assert covered < 25 and empty > 50
+
+
+STRAND = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 100">'
+                     '<rect x="3.5" width="3" height="100" fill="#555"/></svg>')
+
+
+def test_thin_marks_that_fill_their_container_are_not_said_to_leave_it_empty():
+    # heights on a range of 20 to 80 px: the tallest strand, 4x the shortest and over 3x the
+    # median, caps the scale, and the strands' footprints cover a quarter of the container;
+    # but they stand all over it (6% of it is far from every strand), so nothing is said
+    v = np.random.default_rng(5).lognormal(0, 1, 70)
+    c = uw.Chart(pd.DataFrame({"v": v}), mark=STRAND, height="v", height_range=(20, 80),
+                 container=uw.Container.ellipse(200, 150, 170, 120), canvas=(400, 300), seed=0)
+    out = said(c.layout)
+    assert not [m for m in out if "caps the scale" in m], out
+    long = c.placements["height"].to_numpy()
+    assert long.max() > 3 * np.median(long)   # the outlier test alone would have warned
 
 
 def curve_chart(mode: str, boundary: str):

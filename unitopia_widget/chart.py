@@ -288,7 +288,7 @@ class Chart(Piling, HandControl):
         self.laid = laid
         self._remember_run(origin, inputs, laid.units, laid.result)
         if not laid.result.cancelled:
-            warn_shortfalls(laid.units, self.layers, self.canvas, laid.result.unit_scale, self.df)
+            warn_shortfalls(laid.units, self.layers, self.canvas, laid.result, self.df)
             warn_small_marks(laid.placements, self.layers)
         return laid.placements
 

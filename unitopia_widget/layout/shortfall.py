@@ -1,7 +1,8 @@
 """What a layout could not give, said after the solve: an open container whose marks do not
 reach the fill asked of it, and a closed container left empty because its largest mark caps
 the scale or because its marks are tied to an emitter's curve too short to hold them. Read
-from the final scales (``Result.unit_scale``); warnings only, nothing moves."""
+from the final scales (``Result.unit_scale``) and, for a capped scale, from where the marks
+ended; warnings only, nothing moves."""
 from __future__ import annotations
 
 import math
@@ -11,9 +12,11 @@ import numpy as np
 
 from ..design.encodings import footprint
 from ..design.sharing import by_container
+from .prepare.lattice import container_region
 from .prepare.pack import thin
 from .prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, widest_disc, scale_cap
 from .prepare.start import footprint_radius
+from .step.distance import edt
 
 SHORT = 0.85      # an open fill whose marks' ink covers under this share of the ask is warned
 #                   (the issue's bound is 0.8; ink that pokes out or overlaps costs a little more)
@@ -22,16 +25,21 @@ EMPTY = 0.5       # a closed container whose footprints cover under this share i
 CAPPED = 0.8      # a final scale at least this share of a layer's cap (its longest mark in the
 #                   container's widest disc) is held by that mark
 OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
+LEFT_EMPTY = 0.25  # a capped container with more than this share farther than a median mark's
+#                    radius from every mark is left empty (footprint area alone misreads thin
+#                    marks: strands on a height_range= cover 31% of a container they leave full)
+SEEN = 300.0      # raster px along the canvas's long side that the share left empty is read on
 STACK = 4         # warnings point at the user's call: warn_* <- warn_shortfalls <- Chart.layout <- it
 FREE_HELP = "use CurveEmitter(mode='free') so that the curve only places the marks"
 
 
-def warn_shortfalls(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
-    """Every warning of this module for a layout of ``units`` at its final scales
-    ``unit_scale (N,)``; ``df``: the rows, by index label (``warn_capped_scale``)."""
-    warn_unreached_fill(units, layers, canvas, unit_scale)
-    warn_capped_scale(units, layers, canvas, unit_scale, df)
-    warn_curve_held(units, layers, canvas, unit_scale)
+def warn_shortfalls(units, layers, canvas, result, df) -> None:
+    """Every warning of this module for a layout of ``units`` ended as ``result`` (a
+    ``solver.Result``: its final scales, centres and angles); ``df``: the rows, by index label
+    (``warn_capped_scale``)."""
+    warn_unreached_fill(units, layers, canvas, result.unit_scale)
+    warn_capped_scale(units, layers, canvas, result, df)
+    warn_curve_held(units, layers, canvas, result.unit_scale)
 
 
 def emptied(units, layers, canvas, unit_scale: np.ndarray):
@@ -129,14 +137,17 @@ def warn_curve_held(units, layers, canvas, unit_scale: np.ndarray) -> None:
                           stacklevel=STACK)
 
 
-def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None:
-    """Warn for each closed container (its scale grown by the solver) whose marks' footprints
-    cover under ``EMPTY`` of it because one mark, ``OUTLIER`` times the median or longer,
-    holds the scale at its cap: the row, its value in the bound size channels (from ``df``,
-    the rows by index label), the sizes drawn, and the ``*_range=`` that would help."""
+def warn_capped_scale(units, layers, canvas, result, df) -> None:
+    """Warn for each closed container (its scale grown by the solver) left empty (its
+    footprints cover under ``EMPTY`` of it, and more than ``LEFT_EMPTY`` of it is far from
+    every mark where ``result`` left them) because one mark, ``OUTLIER`` times the median or
+    longer, holds the scale at its cap: the row, its value in the bound size channels (from
+    ``df``, the rows by index label), the sizes drawn, and the ``*_range=`` that would help."""
+    unit_scale = result.unit_scale
     for members, mine, covered, _ in emptied(units, layers, canvas, unit_scale):
         if any(layers[i].fill is not None for i in members):
             continue   # a fixed scale: the fill asked for, not a cap
+        empty = None   # read once per container, when a capping mark is found
         long = 2 * np.maximum(units.half_w, units.half_h) * unit_scale   # px
         for i in members:
             at = units.layer == i
@@ -145,6 +156,10 @@ def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None
             j = int(np.flatnonzero(at)[np.argmax(long[at])])
             median = float(np.median(long[mine]))
             if long[j] < OUTLIER * median:
+                continue
+            if empty is None:
+                empty = left_empty(units, mine, layers[i].region, canvas, result)
+            if empty <= LEFT_EMPTY:
                 continue
             row = units.rows[j]
             bound = [(c, layers[i].encodings[c]) for c in ("size", "width", "height")
@@ -157,9 +172,37 @@ def warn_capped_scale(units, layers, canvas, unit_scale: np.ndarray, df) -> None
                           f"the scale: {long[j]:.0f} px long, the most the container holds, "
                           f"{long[j] / median:.0f}x the median mark "
                           f"({median:.2g} px), so the marks cover {covered:.0%} of the closed "
-                          f"container and leave the rest empty. Map the column onto a range of "
+                          f"container and leave {empty:.0%} of it empty. Map the column onto a range of "
                           f"drawn sizes ({ranges}), bind a log-scaled column (np.log1p), or "
                           f"leave the row out", stacklevel=STACK)
+
+
+def left_empty(units, mine: np.ndarray, container, canvas, result) -> float:
+    """The share of ``container`` farther than the median mark's ink radius from every mark
+    ``mine (N,) bool`` where ``result`` left it (``center``, ``angle`` degrees, ``unit_scale``):
+    each mark drawn as its box shrunk to the area of its ink, on a raster of ``SEEN`` px
+    along the canvas's long side."""
+    rho = min(1.0, SEEN / max(canvas))
+    inside = container_region(container, canvas, rho).inside
+    h, w = inside.shape
+    ink = np.zeros((h, w), bool)
+    shrink = np.sqrt(np.minimum(units.fill_fraction[mine], 1.0)) * result.unit_scale[mine] * rho
+    half = np.stack([units.half_w[mine], units.half_h[mine]], 1) * shrink[:, None]
+    for (x, y), a, (u, v) in zip(result.center[mine] * rho, np.radians(result.angle[mine]),
+                                 np.maximum(half, 0.5)):
+        reach = math.hypot(u, v)
+        i0, i1 = max(int(y - reach), 0), min(int(y + reach) + 2, h)
+        j0, j1 = max(int(x - reach), 0), min(int(x + reach) + 2, w)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        dy, dx = np.ogrid[i0:i1, j0:j1]
+        dx, dy = dx + 0.5 - x, dy + 0.5 - y
+        along, across = dx * math.cos(a) + dy * math.sin(a), dy * math.cos(a) - dx * math.sin(a)
+        ink[i0:i1, j0:j1] |= (np.abs(along) <= u) & (np.abs(across) <= v)
+    if not ink.any():
+        return 1.0
+    radius = math.sqrt(float(np.median(units.area[mine] * result.unit_scale[mine] ** 2)) / math.pi)
+    return float((inside & (edt(~ink) > radius * rho)).sum()) / max(int(inside.sum()), 1)
 
 
 def _shown(value) -> str:
