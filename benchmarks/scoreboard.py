@@ -12,8 +12,9 @@ multiple of the median mark: a mark across a narrow join; 0 when none), strata i
 (share of the blocked layers' marks beyond the layer they rest on), |rho| of mark area
 against position (distance from the force point, depth along a directional force, or
 distance from the container's centre), pull (how far the
-forces gathered the marks: 1 against the far wall or at the point), layout seconds and
-the number of warnings. Then the totals and the ten worst designs by ``badness`` (each
+forces gathered the marks: 1 against the far wall or at the point), layout seconds, the
+solver's iterations (a layout at or past its layers' ``iterations=`` budget never came to rest
+by its own criteria) and the number of warnings. Then the totals and the ten worst designs by ``badness`` (each
 term is 1 at the issue's bound: 1% overlap, 0.5% outside, 10% empty beyond 10%, 20% of
 the asked fill missing with no warning, 10% of strata out of order, 30 s).
 ``--seeds 0-4`` lays each design out with those layout seeds and reports the spread
@@ -39,7 +40,8 @@ from corpus import generate, run  # noqa: E402
 
 QUICK = ("k2-thin-push", "k5-twins", "m001", "m005", "m007", "m011", "m017", "m019", "m038", "m043",
          "m044", "m046", "m047", "m048", "m053")
-MEASURES = ("overlap", "outside", "empty", "fill", "join", "strata", "rho", "pull", "seconds")
+MEASURES = ("overlap", "outside", "empty", "fill", "join", "strata", "rho", "pull", "seconds",
+            "iterations")
 PERCENT = {"overlap", "outside", "empty", "fill"}
 
 
@@ -67,19 +69,21 @@ def fmt(name: str, v) -> str:
         return ""
     if name in PERCENT:
         return f"{100 * v:.2f}"
+    if name == "iterations":
+        return f"{v:.0f}"
     return f"{v:.1f}" if name == "seconds" else f"{v:.2f}"
 
 
 HEADER = ("| design | container | mark | data | force | L | bnd | n | overlap % | outside % | "
-          "empty % | fill % / asked | join x | strata | abs rho | pull | s | warn |")
+          "empty % | fill % / asked | join x | strata | abs rho | pull | s | it | warn |")
 
 
-RULE = "|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+RULE = "|---|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 
 
 def line(r: dict) -> str:
     if "error" in r:
-        return f"| {r['id']} | failed: {r['error'][:120]} |" + " |" * 16
+        return f"| {r['id']} | failed: {r['error'][:120]} |" + " |" * 17
     t = r["tags"]
     fill = "" if r["fill"] is None else f"{100 * r['fill']:.0f} / {100 * r['fill_asked']:.0f}"
     return (f"| {r['id']} | {t.get('container', '')} | {t.get('mark', '')} | {t.get('data', '')} | "
@@ -89,7 +93,7 @@ def line(r: dict) -> str:
             f"{fmt('empty', r['empty'])} | {fill} | {fmt('join', r.get('join'))} | "
             f"{fmt('strata', r['strata'])} | "
             f"{fmt('rho', r['rho'])} | {fmt('pull', r['pull'])} | {fmt('seconds', r['seconds'])} | "
-            f"{len(r['warnings'])} |")
+            f"{fmt('iterations', r.get('iterations'))} | {len(r['warnings'])} |")
 
 
 def totals(records: list) -> list[str]:
@@ -98,6 +102,11 @@ def totals(records: list) -> list[str]:
     out = [f"designs: {len(records)} ({len(records) - len(ok)} failed); layout seconds: "
            f"{col('seconds').sum():.0f} in all, median {np.median(col('seconds')):.1f}, "
            f"max {col('seconds').max():.1f}, over 30 s: {int((col('seconds') > 30).sum())}"]
+    counted = [r for r in ok if r.get("iterations") is not None]
+    if counted:
+        spent = sum(1 for r in counted if r["iterations"] >= r["budget"])
+        out.append(f"iterations: median {np.median([r['iterations'] for r in counted]):.0f}; "
+                   f"the whole budget spent (never at rest): {spent} of {len(counted)}")
     for k, bound in (("overlap", 0.01), ("outside", 0.005), ("empty", 0.10)):
         v = col(k)
         if len(v):

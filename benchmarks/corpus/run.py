@@ -1,5 +1,6 @@
 """One design of the corpus laid out and measured: ``run(spec, folder, seed)`` returns a
-flat record (the design's tags, the ink measures, the order measures, seconds, warnings)."""
+flat record (the design's tags, the ink measures, the order measures, seconds, the solver's
+iterations and the budget its layers allow, warnings)."""
 from __future__ import annotations
 
 import time
@@ -34,6 +35,10 @@ def run(spec: generate.Spec, folder: str, seed: int = 0, png: str | None = None)
             t0 = time.perf_counter()
             chart.layout()
             record["seconds"] = time.perf_counter() - t0
+        # a layout that spends its whole budget did not end by its own criteria (the settle
+        # never came to rest): the legalising rounds after it get what is left
+        record["iterations"] = int(chart.result.iterations)
+        record["budget"] = max(layer.iterations for layer in chart.layers)
         record["tags"] = dict(built.tags)
         record["warnings"] = [str(w.message)[:300] for w in caught
                               if not str(w.message).startswith("dropna=True")]
