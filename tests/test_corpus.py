@@ -128,6 +128,18 @@ def test_the_quick_slice_stays_within_the_bounds_of_todays_engine(spec, tmp_path
     if r["strata"] is not None:
         assert r["strata"] >= 0.7, r
     assert r["seconds"] <= 60, r
+    assert 0 < r["iterations"] and r["budget"] == max(layer.iterations for layer in
+                                                       generate.build(spec, str(tmp_path)).chart.layers)
+
+
+def test_the_board_counts_the_layouts_that_spent_their_whole_budget():
+    clean = dict(id="m", seed=0, tags={}, warnings=[], units=10, overlap=0.0, outside=0.0,
+                 empty=None, fill=None, fill_asked=None, join=0.0, strata=None, rho=None,
+                 pull=None, seconds=1.0, budget=600)
+    records = [dict(clean, iterations=n) for n in (600, 212, 960)]
+    spent = [line for line in scoreboard.totals(records) if line.startswith("iterations")]
+    assert spent == ["iterations: median 600; the whole budget spent (never at rest): 2 of 3"]
+    assert "| 212 |" in scoreboard.line(records[1])
 
 
 def test_the_quick_slice_is_fifteen_designs_of_the_corpus():
