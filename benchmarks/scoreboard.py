@@ -11,12 +11,12 @@ below its ask), join (the largest mark that splits its container into large piec
 multiple of the median mark: a mark across a narrow join; 0 when none), strata in order
 (share of the blocked layers' marks beyond the layer they rest on), |rho| of mark area
 against position (distance from the force point, depth along a directional force, or
-distance from the container's centre), pull (how far the
-forces gathered the marks: 1 against the far wall or at the point), layout seconds, the
-solver's iterations (a layout at or past its layers' ``iterations=`` budget never came to rest
-by its own criteria) and the number of warnings. Then the totals and the ten worst designs by ``badness`` (each
-term is 1 at the issue's bound: 1% overlap, 0.5% outside, 10% empty beyond 10%, 20% of
-the asked fill missing with no warning, 10% of strata out of order, 30 s).
+distance from the container's centre), pull (how far the forces gathered the marks: 1
+against the far wall or at the point), layout seconds, the solver's iterations (a layout at
+or past its layers' ``iterations=`` budget never came to rest by its own criteria) and the
+number of warnings. Then the totals and the ten worst designs by ``badness`` (each term is
+1 at the issue's bound: 1% overlap, 0.5% outside, 10% empty beyond 10%, 20% of the asked
+fill missing with no warning, 10% of strata out of order, 30 s).
 ``--seeds 0-4`` lays each design out with those layout seeds and reports the spread
 (max - min) of every measure: the noise a change must beat. ``--against`` prints each
 design's change from a saved board (matched by id and seed).
