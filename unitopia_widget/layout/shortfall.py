@@ -172,9 +172,9 @@ def warn_capped_scale(units, layers, canvas, result, df) -> None:
                           f"the scale: {long[j]:.0f} px long, the most the container holds, "
                           f"{long[j] / median:.0f}x the median mark "
                           f"({median:.2g} px), so the marks cover {covered:.0%} of the closed "
-                          f"container and leave {empty:.0%} of it empty. Map the column onto a range of "
-                          f"drawn sizes ({ranges}), bind a log-scaled column (np.log1p), or "
-                          f"leave the row out", stacklevel=STACK)
+                          f"container and leave {empty:.0%} of it empty. Map the column onto a "
+                          f"range of drawn sizes ({ranges}), bind a log-scaled column "
+                          f"(np.log1p), or leave the row out", stacklevel=STACK)
 
 
 def left_empty(units, mine: np.ndarray, container, canvas, result) -> float:
