@@ -1,5 +1,6 @@
 """Thin marks feel a directional force as round marks do: a pile that legalising shrinks
-stays pressed onto each mark's own floor (``rules/legalize.press``)."""
+stays pressed onto each mark's own floor (``rules/legalize.press``), and a pile's marks end
+where their ink meets, not where their boxes do (``rules/drop``)."""
 from __future__ import annotations
 
 from types import SimpleNamespace
@@ -10,6 +11,7 @@ import pytest
 import torch
 
 import unitopia_widget as uw
+from ink import ink_metrics
 from unitopia_widget.design.forces import DirectionalForce, PointForce
 from unitopia_widget.layout.rules.legalize import press
 from unitopia_widget.layout.step.placement import Placement
@@ -31,6 +33,25 @@ def test_thin_bars_pushed_right_pile_in_the_right_of_the_pen():
     table = c.layout()
     assert c.result.phases.get("polish.legalize", 0) > 1      # the case: the scale gave way
     assert (table["x"].mean() - 20) / 260 > 0.6               # within the right 40%
+
+
+ARROW = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 96 8">'
+                    '<rect x="0" y="3" width="82" height="2" fill="#333"/>'
+                    '<polygon points="80,0 96,4 80,8" fill="#c33"/></svg>')
+
+
+def test_arrows_pushed_right_fall_until_their_ink_meets():
+    # 60 arrows 12:1 whose heads stand taller than their shafts, pushed right at fill 0.5:
+    # the pile rested with the heads of staggered rows stopped on each other's boxes, a mean
+    # x of 0.58 of the pen; dropped by their ink they pile in its right part
+    c = uw.Chart(pd.DataFrame({"v": np.random.default_rng(1).uniform(1, 3, 60)}), mark=ARROW,
+                 size="v", orientation=0.0, container=uw.Container.rect(20, 20, 360, 240),
+                 boundary="open", fill=0.5, forces=[uw.DirectionalForce(0)], canvas=(400, 280),
+                 seed=1)
+    table = c.layout()
+    assert c.result.phases.get("finish.drop") == 1
+    assert (table["x"].mean() - 20) / 360 > 0.62
+    assert ink_metrics(c.to_svg(legend=False), c.canvas)["overlap"] < 0.005
 
 
 def test_a_shrinking_pile_settles_onto_each_marks_own_floor():

@@ -15,6 +15,7 @@ from __future__ import annotations
 from .best_loss import BestLoss
 from .contacts import Contacts
 from .decay import Decay
+from .drop import Drop
 from .exchange import Exchange
 from .fill_scale import FillScale
 from .legalize import Legalize
@@ -45,6 +46,7 @@ SCHEDULE = (
     StartPolish(),   # settle, every iteration: the settle ends, scales shrink and freeze
     Decay(),         # polish, every iteration: the steps decay to nothing
     Legalize(),      # polish, every iteration: the layout is done, or gives up scale and polishes again
+    Drop(),          # finish, once: open piles under a directional pull fall until their ink meets
     Contacts(),      # finish, once: hollow marks moved off contacts finer than the raster
 )
 

@@ -19,9 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
-from ...design.encodings import footprint
-from ..prepare.fields import padded
-from ..step.raster import Planner, RasterGrid, render_samples
+from ..step.fine import draw
 from .state import Rule, movable
 
 
@@ -47,33 +45,11 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     shifted = np.zeros((n, 2), dtype=np.int64)   # (dy, dx) fine px each unit has moved
     if not free.any():
         return np.zeros((n, 2))
-    w, h = p.grid.canvas
-    n_layers = int(p.terms.blocks.shape[0])
-    rho = max(p.grid.rho, min(c.fine_rho, math.sqrt(c.max_fine / (w * h * n_layers))))
-    grid = RasterGrid((w, h), rho, pad=2)
-    dev = center.device
-    hw = p.half_w * footprint(p.margin) * unit_scale
-    hh = p.half_h * footprint(p.margin) * unit_scale
-    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev,
-                   p.sprite_aspects).plan_for(hw, hh)
-    as_t = lambda a: torch.as_tensor(a, device=dev, dtype=torch.float32)   # noqa: E731
-    values, index, owner = render_samples(center, angle, as_t(hw), as_t(hh), plan, p.pyramids, grid)
-    drawn = values > 0.5
-    index, owner = index[drawn].long(), owner[drawn]
-    rows, cols = grid.shape
-    size = rows * cols
-    layer = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
-    collide = _collisions(p.terms, n_layers).to(dev)           # (L, L) float
-    count = torch.zeros(n_layers * size, device=dev).index_add_(
-        0, layer[owner] * size + index, torch.ones_like(index, dtype=torch.float32))
-    seen = collide @ count.reshape(n_layers, size)              # (L, S) colliding footprints per pixel
-    del count
-    inside = _inside(p.regions, grid, dev)                      # (L, S) bool
-    # each unit's pixels in one run, so that a move rewrites only the unit that moved (a move
-    # shifts them: their number stays)
-    order = torch.argsort(owner, stable=True)
-    index, owner = index[order], owner[order]
-    bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
+    fine = draw(p, center, angle, unit_scale, rotating, c.fine_rho, c.max_fine)
+    grid, rho, dev = fine.grid, fine.grid.rho, center.device
+    index, owner, bounds, layer = fine.index, fine.owner, fine.bounds, fine.layer
+    seen, inside = fine.seen, fine.inside
+    cols = grid.shape[1]
     reach = max(int(rho / p.grid.rho), 1)                     # one layout raster pixel, fine px
     dy, dx = np.mgrid[-reach:reach + 1, -reach:reach + 1]
     near = dy ** 2 + dx ** 2 <= reach ** 2
@@ -89,7 +65,7 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
         for i in np.argsort(-share * bad)[: int(bad.sum())]:
             pix = index[bounds[i]:bounds[i + 1]]
             a = int(p.layer[i])
-            seen[:, pix] -= collide[:, a:a + 1]                  # the unit lifted off the raster
+            fine.lift(i)                                         # the unit lifted off the raster
             crowded = _crowded_at(seen[a], inside[a], pix, offsets, grid.shape, c.chunk)
             within = ((offsets + torch.as_tensor(shifted[i], device=dev)) ** 2).sum(1) <= reach ** 2
             best = int(torch.argmin(torch.where(within, crowded + cost_of_move, math.inf)))
@@ -97,7 +73,7 @@ def clear(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
                 pix += int(offsets[best, 0]) * cols + int(offsets[best, 1])   # a view: index too
                 shifted[i] += offsets[best].cpu().numpy()
                 moved = True
-            seen[:, pix] += collide[:, a:a + 1]
+            fine.put(i)
         if not moved:
             break
     return shifted[:, ::-1] / rho   # (dx, dy) canvas px
@@ -119,26 +95,6 @@ def _crowded_at(seen: torch.Tensor, inside: torch.Tensor, pix: torch.Tensor,
         crowded = ((seen[spot] > 0.5) | ~inside[spot]).sum(1).float()
         out.append(torch.where(on, crowded, math.inf))
     return torch.cat(out)
-
-
-def _collisions(terms, n_layers: int) -> torch.Tensor:
-    """``(L, L)`` float: 1 where two layers' footprints may not share a pixel (the same
-    layer, or one blocks or rests on the other; either way round)."""
-    pair = torch.eye(n_layers) + terms.blocks.cpu()
-    if terms.rests is not None:
-        pair = pair + terms.rests.cpu()
-    return ((pair + pair.T) > 0).float()
-
-
-def _inside(regions, grid: RasterGrid, dev) -> torch.Tensor:
-    """``(L, S)`` bool: the fine pixels at least half inside each layer's region."""
-    out, made = [], {}
-    for region in regions:
-        if id(region) not in made:
-            cov = padded(region.coverage(grid.canvas, grid.rho), grid)
-            made[id(region)] = torch.as_tensor(cov.reshape(-1) >= 0.5, device=dev)
-        out.append(made[id(region)])
-    return torch.stack(out)
 
 
 def _crowding(seen, inside, index, owner, layer, n: int) -> np.ndarray:

@@ -1,0 +1,94 @@
+"""The footprints drawn once on a raster finer than the layout's, as a checker draws them.
+
+The solver judges the marks on a raster aimed at a mean footprint a few raster px across; a
+move made after the last iteration (``rules.contacts``, ``rules.drop``) is judged on this
+one instead: ``fine_rho`` px per canvas px (capped in size), each footprint cut at alpha
+0.5, with per layer the count of footprints that may not share a pixel with it and the
+pixels inside its region.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+
+from ...design.encodings import footprint
+from .raster import Planner, RasterGrid, render_samples
+
+
+@dataclass
+class FineRaster:
+    """Every footprint's pixels on one fine raster. ``S`` pixels, ``M`` drawn footprint pixels."""
+
+    grid: RasterGrid
+    index: torch.Tensor     # (M,) long, flat fine px, each unit's in one run (``bounds``)
+    owner: torch.Tensor     # (M,) long, the unit of each pixel
+    bounds: np.ndarray      # (N + 1,) unit i's pixels are index[bounds[i]:bounds[i + 1]]
+    layer: torch.Tensor     # (N,) long, each unit's layer
+    collide: torch.Tensor   # (L, L) float, 1 where two layers' footprints may not share a pixel
+    seen: torch.Tensor      # (L, S) float, footprints on each pixel that layer a collides with
+    inside: torch.Tensor    # (L, S) bool, pixels at least half inside layer a's region
+
+    def lift(self, i: int) -> None:
+        """Take unit ``i``'s pixels off ``seen``."""
+        a = int(self.layer[i])
+        self.seen[:, self.index[self.bounds[i]:self.bounds[i + 1]]] -= self.collide[:, a:a + 1]
+
+    def put(self, i: int) -> None:
+        """Put unit ``i``'s pixels (as they are in ``index``) back on ``seen``."""
+        a = int(self.layer[i])
+        self.seen[:, self.index[self.bounds[i]:self.bounds[i + 1]]] += self.collide[:, a:a + 1]
+
+
+@torch.no_grad()
+def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
+         rotating: np.ndarray, fine_rho: float, max_fine: int) -> FineRaster:
+    """The footprints of the solver's ``Problem`` ``p`` at ``center (N, 2)`` canvas px,
+    ``angle (N,)`` radians and ``unit_scale (N,)`` on a raster of ``fine_rho`` px per canvas px
+    (coarser where all layers' slabs would pass ``max_fine`` px, never coarser than the
+    layout's); ``rotating (N,)``: units whose patch must hold any rotation."""
+    w, h = p.grid.canvas
+    n, n_layers = len(p.layer), int(p.terms.blocks.shape[0])
+    rho = max(p.grid.rho, min(fine_rho, math.sqrt(max_fine / (w * h * n_layers))))
+    grid = RasterGrid((w, h), rho, pad=2)
+    dev = center.device
+    hw = p.half_w * footprint(p.margin) * unit_scale
+    hh = p.half_h * footprint(p.margin) * unit_scale
+    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev,
+                   p.sprite_aspects).plan_for(hw, hh)
+    as_t = lambda a: torch.as_tensor(a, device=dev, dtype=torch.float32)   # noqa: E731
+    values, index, owner = render_samples(center, angle, as_t(hw), as_t(hh), plan, p.pyramids, grid)
+    drawn = values > 0.5
+    index, owner = index[drawn].long(), owner[drawn]
+    size = grid.shape[0] * grid.shape[1]
+    layer = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
+    collide = _collisions(p.terms, n_layers).to(dev)
+    count = torch.zeros(n_layers * size, device=dev).index_add_(
+        0, layer[owner] * size + index, torch.ones_like(index, dtype=torch.float32))
+    seen = collide @ count.reshape(n_layers, size)
+    order = torch.argsort(owner, stable=True)
+    index, owner = index[order], owner[order]
+    bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
+    return FineRaster(grid, index, owner, bounds, layer, collide, seen, _inside(p.regions, grid, dev))
+
+
+def _collisions(terms, n_layers: int) -> torch.Tensor:
+    """``(L, L)`` float: 1 where two layers' footprints may not share a pixel (the same
+    layer, or one blocks or rests on the other; either way round)."""
+    pair = torch.eye(n_layers) + terms.blocks.cpu()
+    if terms.rests is not None:
+        pair = pair + terms.rests.cpu()
+    return ((pair + pair.T) > 0).float()
+
+
+def _inside(regions, grid: RasterGrid, dev) -> torch.Tensor:
+    """``(L, S)`` bool: the fine pixels at least half inside each layer's region."""
+    out, made = [], {}
+    for region in regions:
+        if id(region) not in made:
+            cov = np.pad(region.coverage(grid.canvas, grid.rho), grid.pad)   # 0 on the padding
+            made[id(region)] = torch.as_tensor(cov.reshape(-1) >= 0.5, device=dev)
+        out.append(made[id(region)])
+    return torch.stack(out)
