@@ -26,7 +26,7 @@ from .state import Rule, movable
 class DropSettings:
     fine_rho: float = 2.0          # fine raster px per canvas px
     max_fine: int = 24_000_000     # fine raster px over all layer slabs at most (more get coarser)
-    rounds: int = 6                # passes; in each, every unit falls at once (those above follow)
+    rounds: int = 6                # falls; in each, every unit falls at once (those above follow)
     gap: float = 1.0               # canvas px each unit stops short of what it meets: a contact
                                    # closer reads as overlap on a raster made for thin marks (finer)
 
@@ -50,99 +50,147 @@ def piles(s) -> list:
     return [(np.asarray(key), np.concatenate(groups)) for key, groups in out.items()]
 
 
+def line(pull: np.ndarray, k_max: int) -> np.ndarray:
+    """``(k_max + 1, 2)`` int: the (row, column) offset of each of ``0..k_max`` whole-pixel
+    steps along the unit vector ``pull (2,)`` (x, y): the digital line nearest it."""
+    k = np.arange(k_max + 1)
+    return np.stack([np.round(k * pull[1]), np.round(k * pull[0])], 1).astype(np.int64)
+
+
+def fronts(which: torch.Tensor, r: torch.Tensor, c: torch.Tensor, kinds: np.ndarray, owned):
+    """The pixels (``which``, ``r``, ``c``: unit, row, column, ``(P,)``) that a step of one
+    of ``kinds (k, 2)`` (the distinct (row, column) steps of a line, ``kinds_of``) moves onto
+    pixels not already their unit's (``owned(which, rows, columns)``): each step puts a unit
+    on new pixels only there."""
+    front = torch.zeros_like(which, dtype=torch.bool)
+    for dr, dc in kinds:
+        front |= ~owned(which, r + int(dr), c + int(dc))
+    return which[front], r[front], c[front]
+
+
+def kinds_of(steps: np.ndarray) -> np.ndarray:
+    """``(k, 2)`` the distinct single steps of a line ``steps (K + 1, 2)`` (``line``)."""
+    return np.unique(steps[1:] - steps[:-1], axis=0)
+
+
+def sweep(fine: FineRaster, which, r, c, lay, steps: np.ndarray, limit: np.ndarray,
+          owned=None, chunk: int = 2_000_000) -> np.ndarray:
+    """``(n,)`` for each of ``n`` candidate placements, the most steps ``k <= limit`` along
+    ``steps (K + 1, 2)`` (row, column offsets; K >= limit.max()) it takes with none of its
+    pixels (``which``: candidate, ``r``, ``c``, ``lay``: the layer it is judged in, ``(P,)``)
+    on a footprint that layer collides with (less its own, ``owned(which, rows, columns)``,
+    where given), outside its region or off the raster at any step up to k. The steps are
+    looked up in runs that double in length."""
+    rows, cols = fine.grid.shape
+    dev = which.device
+    fell = np.array(limit, dtype=np.int64)
+    going = torch.as_tensor(limit > 0, device=dev)
+    limit_t = torch.as_tensor(limit, device=dev)
+    done, run, k_max = 0, 4, int(limit.max(initial=0))
+    while done < k_max and bool(going.any()):
+        keep = going[which]
+        which, r, c, lay = which[keep], r[keep], c[keep], lay[keep]
+        m = max(1, min(run, k_max - done, chunk // max(len(which), 1)))
+        off = torch.as_tensor(steps[done + 1:done + m + 1], device=dev)    # (m, 2)
+        rr, cc = r[:, None] + off[None, :, 0], c[:, None] + off[None, :, 1]   # (P, m)
+        on = (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
+        q = rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
+        crowd = fine.seen[lay[:, None], q]
+        if owned is not None:
+            crowd = crowd - owned(which[:, None], rr, cc).float()
+        hit = ~on | ~fine.inside[lay[:, None], q] | (crowd > 0.5)
+        first = torch.where(hit.any(1), hit.float().argmax(1), m)       # (P,) steps clear
+        clear = torch.full((len(limit),), m, device=dev).scatter_reduce(0, which, first, "amin")
+        stop = going & ((clear < m) | (limit_t <= done + m))
+        halt = stop.cpu().numpy()
+        fell[halt] = np.minimum(done + clear.cpu().numpy()[halt], limit[halt])
+        going &= ~stop
+        done, run = done + m, run * 2
+    return fell
+
+
+def owner_test(fine: FineRaster, which_unit: torch.Tensor, pix: torch.Tensor):
+    """``owned(which, rows, columns)``: whether each pixel is one of its unit's own, the
+    pixels ``pix (P,)`` of units ``which_unit (P,)`` (indices into the caller's list)."""
+    rows, cols = fine.grid.shape
+    size = rows * cols
+    own = torch.sort(which_unit * size + pix).values
+
+    def owned(which, rr, cc):
+        key = which * size + rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
+        hit = own[torch.searchsorted(own, key.reshape(-1)).clamp(max=len(own) - 1)].reshape(key.shape) == key
+        return hit & (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
+    return owned
+
+
+def pixels(fine: FineRaster, units: np.ndarray):
+    """``(which, pix, r, c, lay)``: the footprint pixels of ``units`` (``which`` indexes
+    ``units``; flat index, row, column, the unit's layer), each ``(P,)``."""
+    dev = fine.index.device
+    cols = fine.grid.shape[1]
+    counts = torch.as_tensor(fine.bounds[units + 1] - fine.bounds[units], device=dev)
+    which = torch.repeat_interleave(torch.arange(len(units), device=dev), counts)
+    pix = torch.cat([fine.index[fine.bounds[i]:fine.bounds[i + 1]] for i in units])
+    return which, pix, pix // cols, pix % cols, fine.layer[torch.as_tensor(units, device=dev)][which]
+
+
 def reach(fine: FineRaster, units: np.ndarray, pull: np.ndarray, limit: np.ndarray) -> np.ndarray:
     """``(n,)`` fine px each of ``units`` can fall along ``pull (2,)`` (at most ``limit (n,)``)
     before a pixel of its footprint meets one it collides with, or one outside its region or
     the raster, the others staying where they are. All fall at once: two units that each
     keep off the other's place keep off each other (a pull is one direction). The fall is
     the digital line of whole pixels nearest the pull; a step of it moves a unit onto new
-    pixels only at its front for that step (pixels the step does not carry onto its own),
-    so only those are looked up, each step."""
-    rows, cols = fine.grid.shape
-    size = rows * cols
-    dev = fine.index.device
-    k_max = int(limit.max(initial=0))
-    fell = np.zeros(len(units), dtype=np.int64)
-    if k_max <= 0:
-        return fell
-    ks = np.arange(k_max + 1)
-    offsets = np.stack([np.round(ks * pull[1]), np.round(ks * pull[0])], 1).astype(np.int64)
-    kinds, kind_of_step = np.unique(offsets[1:] - offsets[:-1], axis=0, return_inverse=True)
-    counts = torch.as_tensor(fine.bounds[units + 1] - fine.bounds[units], device=dev)
-    which = torch.repeat_interleave(torch.arange(len(units), device=dev), counts)
-    pix = torch.cat([fine.index[fine.bounds[i]:fine.bounds[i + 1]] for i in units])
-    own = torch.sort(which * size + pix).values   # each unit's own pixels, to step over them
-    r, c = pix // cols, pix % cols
-
-    def owned(w, rr, cc):
-        key = w * size + rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
-        hit = own[torch.searchsorted(own, key).clamp(max=len(own) - 1)] == key
-        return hit & (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
-
-    fronts = []   # per kind of step: (unit, row, column) of the pixels that step moves onto new ones
-    for dr, dc in kinds:
-        front = ~owned(which, r + int(dr), c + int(dc))
-        fronts.append([which[front], r[front], c[front]])
-    lay_of = fine.layer[torch.as_tensor(units, device=dev)]
-    falling = torch.as_tensor(limit > 0, device=dev)
-    limit_t = torch.as_tensor(limit, device=dev)
-    for k in range(1, k_max + 1):
-        front = fronts[kind_of_step[k - 1]]
-        keep = falling[front[0]]
-        if not bool(keep.all()):
-            front[:] = [v[keep] for v in front]
-        w, rr, cc = front[0], front[1] + int(offsets[k, 0]), front[2] + int(offsets[k, 1])
-        on = (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
-        q = rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
-        lay = lay_of[w]
-        hit = ~on | ~fine.inside[lay, q] | (fine.seen[lay, q] - owned(w, rr, cc).float() > 0.5)
-        stop = falling & ((torch.bincount(w[hit], minlength=len(units)) > 0) | (limit_t < k))
-        if bool(stop.any()):
-            done = stop.cpu().numpy()
-            fell[done] = np.minimum(k - 1, limit[done])
-            falling &= ~stop
-            if not bool(falling.any()):
-                break
-    fell[falling.cpu().numpy()] = k_max
-    return fell
+    pixels only at its front for that step (``fronts``), so only those are looked up."""
+    if int(limit.max(initial=0)) <= 0:
+        return np.zeros(len(units), dtype=np.int64)
+    steps = line(pull, int(limit.max()))
+    which, pix, r, c, lay = pixels(fine, units)
+    owned = owner_test(fine, which, pix)
+    lay_of = fine.layer[torch.as_tensor(units, device=which.device)]
+    which, r, c = fronts(which, r, c, kinds_of(steps), owned)
+    return sweep(fine, which, r, c, lay_of[which], steps, limit, owned)
 
 
 @torch.no_grad()
 def fall(s, c: DropSettings = DropSettings()) -> np.ndarray:
-    """``(N, 2)`` canvas px each unit of the ``piles`` of the solver's state ``s`` falls."""
+    """``(N, 2)`` canvas px each unit of the ``piles`` of the solver's state ``s`` falls: up to
+    ``rounds`` falls of all at once (``reach``), each unit as far as the last left it room."""
     p, place = s.p, s.place
     center, angle = place.transforms()
     unit_scale = s.ctl.unit_scale()
     fine = draw(p, center.detach(), angle.detach(), unit_scale, place.rotating(), c.fine_rho,
                 c.max_fine)
-    rho, cols = fine.grid.rho, fine.grid.shape[1]
+    rho, far = fine.grid.rho, int(sum(fine.grid.shape))   # far: further than any fall
     xy = center.detach().cpu().numpy().astype(float)
     turn = angle.detach().cpu().numpy().astype(float)
     foot = footprint(p.margin) * unit_scale
     moved = np.zeros((len(p.layer), 2))
+    gap = math.ceil(c.gap * rho)
     for pull, units in piles(s):
+        side = np.array([-pull[1], pull[0]])
+        along = extents(p.half_w * foot, p.half_h * foot, turn, pull)
+        across = extents(p.half_w * foot, p.half_h * foot, turn, side)
         # a layer resting on another may not fall past the top of its boxes (``shadows``)
-        barrier = np.full(len(p.layer), np.inf)
-        if p.terms.rests is not None:
-            side = np.array([-pull[1], pull[0]])
-            along = extents(p.half_w * foot, p.half_h * foot, turn, pull)
-            across = extents(p.half_w * foot, p.half_h * foot, turn, side)
-            barrier = shadows(xy + moved, along, across, pull, p.layer,
-                              p.terms.rests.cpu().numpy() > 0, units)
+        barrier = np.full(len(p.layer), np.inf) if p.terms.rests is None else shadows(
+            xy, along, across, pull, p.layer, p.terms.rests.cpu().numpy() > 0, units)
         for _ in range(c.rounds):
             room = (barrier[units] - (xy[units] + moved[units]) @ pull) * rho
-            limit = np.where(np.isfinite(room), np.floor(np.maximum(room, 0.0)),
-                             float(sum(fine.grid.shape))).astype(np.int64)
-            steps = np.maximum(reach(fine, units, pull, limit) - math.ceil(c.gap * rho), 0)
+            limit = np.where(np.isfinite(room), np.floor(np.maximum(room, 0.0)), far).astype(np.int64)
+            steps = np.maximum(reach(fine, units, pull, limit) - gap, 0)
             if not steps.any():
                 break
             for i, k in zip(units[steps > 0], steps[steps > 0]):
-                dr, dc = int(round(k * pull[1])), int(round(k * pull[0]))
-                fine.lift(i)
-                fine.index[fine.bounds[i]:fine.bounds[i + 1]] += dr * cols + dc
-                fine.put(i)
-                moved[i] += (dc / rho, dr / rho)
+                move(fine, moved, i, line(pull, k)[k])
     return moved
+
+
+def move(fine: FineRaster, moved: np.ndarray, i: int, by: np.ndarray) -> None:
+    """Unit ``i`` moved by ``by (2,)`` (rows, columns) fine px on ``fine`` and in ``moved (N, 2)``
+    (canvas px, x and y)."""
+    fine.lift(i)
+    fine.index[fine.bounds[i]:fine.bounds[i + 1]] += int(by[0]) * fine.grid.shape[1] + int(by[1])
+    fine.put(i)
+    moved[i] += (by[1] / fine.grid.rho, by[0] / fine.grid.rho)
 
 
 class Drop(Rule):
