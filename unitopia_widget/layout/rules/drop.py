@@ -111,15 +111,15 @@ def sweep(fine: FineRaster, which, r, c, lay, steps: np.ndarray, limit: np.ndarr
 
 def owner_test(fine: FineRaster, which_unit: torch.Tensor, pix: torch.Tensor):
     """``owned(which, rows, columns)``: whether each pixel is one of its unit's own, the
-    pixels ``pix (P,)`` of units ``which_unit (P,)`` (indices into the caller's list)."""
+    pixels ``pix (P,)`` of units ``which_unit (P,)`` (indices into the caller's list). A
+    pixel two of them share is one's only; the other, looking it up, finds it crowded anyway."""
     rows, cols = fine.grid.shape
-    size = rows * cols
-    own = torch.sort(which_unit * size + pix).values
+    who = torch.full((rows * cols,), -1, dtype=torch.int32, device=pix.device)
+    who[pix] = which_unit.to(torch.int32)
 
     def owned(which, rr, cc):
-        key = which * size + rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
-        hit = own[torch.searchsorted(own, key.reshape(-1)).clamp(max=len(own) - 1)].reshape(key.shape) == key
-        return hit & (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
+        on = (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
+        return on & (who[rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)] == which)
     return owned
 
 
@@ -179,18 +179,11 @@ def fall(s, c: DropSettings = DropSettings()) -> np.ndarray:
             steps = np.maximum(reach(fine, units, pull, limit) - gap, 0)
             if not steps.any():
                 break
-            for i, k in zip(units[steps > 0], steps[steps > 0]):
-                move(fine, moved, i, line(pull, k)[k])
+            falling = units[steps > 0]
+            by = line(pull, int(steps.max()))[steps[steps > 0]]            # (n, 2) rows, columns
+            fine.shift(falling, by[:, 0] * fine.grid.shape[1] + by[:, 1])
+            moved[falling] += by[:, ::-1] / rho
     return moved
-
-
-def move(fine: FineRaster, moved: np.ndarray, i: int, by: np.ndarray) -> None:
-    """Unit ``i`` moved by ``by (2,)`` (rows, columns) fine px on ``fine`` and in ``moved (N, 2)``
-    (canvas px, x and y)."""
-    fine.lift(i)
-    fine.index[fine.bounds[i]:fine.bounds[i + 1]] += int(by[0]) * fine.grid.shape[1] + int(by[1])
-    fine.put(i)
-    moved[i] += (by[1] / fine.grid.rho, by[0] / fine.grid.rho)
 
 
 class Drop(Rule):

@@ -41,6 +41,19 @@ class FineRaster:
         a = int(self.layer[i])
         self.seen[:, self.index[self.bounds[i]:self.bounds[i + 1]]] += self.collide[:, a:a + 1]
 
+    def shift(self, units: np.ndarray, by: np.ndarray) -> None:
+        """Move each of ``units (n,)`` by ``by (n,)`` flat px (rows times columns plus columns)
+        at once, on ``index`` and ``seen``."""
+        step = torch.zeros(len(self.bounds) - 1, dtype=torch.long, device=self.index.device)
+        step[torch.as_tensor(units, device=step.device)] = torch.as_tensor(by, device=step.device)
+        moving = step[self.owner] != 0
+        pix, lay = self.index[moving], self.layer[self.owner[moving]]
+        for sign, at in ((-1.0, pix), (1.0, pix + step[self.owner[moving]])):
+            for a in torch.unique(lay).tolist():
+                mine = at[lay == a]
+                self.seen.index_add_(1, mine, sign * self.collide[:, a:a + 1].expand(-1, len(mine)))
+        self.index[moving] += step[self.owner[moving]]
+
 
 @torch.no_grad()
 def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
