@@ -27,6 +27,7 @@ from .rest import Rest
 from .start_polish import StartPolish
 from .state import Rule, State, Steps
 from .step_size import StepSize
+from .strays import Strays
 from .uncross import Uncross
 
 PHASES = ("settle", "polish", "finish")
@@ -46,6 +47,7 @@ SCHEDULE = (
     StartPolish(),   # settle, every iteration: the settle ends, scales shrink and freeze
     Decay(),         # polish, every iteration: the steps decay to nothing
     Legalize(),      # polish, every iteration: the layout is done, or gives up scale and polishes again
+    Strays(),        # finish, once: marks that ended outside their container brought back in
     Drop(),          # finish, once: open piles under a directional pull fall until their ink meets
     Contacts(),      # finish, once: hollow marks moved off contacts finer than the raster
 )
