@@ -20,7 +20,7 @@ import numpy as np
 import torch
 
 from ..step.fine import draw
-from .state import Rule, movable
+from .state import Rule, movable, shift
 
 
 @dataclass(frozen=True)
@@ -126,8 +126,6 @@ class Contacts(Rule):
             return False
         place = s.place
         center, angle = place.transforms()
-        move = clear(s.p, center.detach(), angle.detach(), s.ctl.unit_scale(), movable(place),
-                     place.rotating(), self.settings)
-        with torch.no_grad():
-            place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+        shift(place, clear(s.p, center.detach(), angle.detach(), s.ctl.unit_scale(),
+                           movable(place), place.rotating(), self.settings))
         return True

@@ -19,7 +19,7 @@ import torch
 from ...design.encodings import footprint
 from ..step.fine import FineRaster, draw
 from .legalize import extents, pull_of, shadows
-from .state import Rule, movable
+from .state import Rule, movable, shift
 
 
 @dataclass(frozen=True)
@@ -208,9 +208,4 @@ class Drop(Rule):
     def __call__(self, s):
         if not self.applies(s):
             return False
-        move = fall(s, self.settings)
-        if not move.any():
-            return False
-        with torch.no_grad():
-            s.place.t += torch.as_tensor(move, dtype=s.place.t.dtype, device=s.place.t.device)
-        return True
+        return shift(s.place, fall(s, self.settings))

@@ -1,6 +1,6 @@
 """What the rules share: the solver's ``State``, the ``Rule`` they are made from, the step
 sizes and cadence the solver and the rules both read (``Steps``), and the bookkeeping of a
-move made by hand (``movable``, ``forget``) and each unit's overlap at the samples
+move made by hand (``movable``, ``forget``, ``shift``) and each unit's overlap at the samples
 (``unit_overlap``)."""
 from __future__ import annotations
 
@@ -111,6 +111,16 @@ def movable(place: Placement) -> np.ndarray:
     for track in place.tracks:
         free[track.index.cpu().numpy()] = False
     return free
+
+
+def shift(place: Placement, move: np.ndarray) -> bool:
+    """Move the units of ``place`` by ``move (N, 2)`` canvas px after the last iteration (a
+    finish rule's move: no optimizer step follows); whether any moved."""
+    if not move.any():
+        return False
+    with torch.no_grad():
+        place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+    return True
 
 
 def forget(optimizer, params, units: list) -> None:

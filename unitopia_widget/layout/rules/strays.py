@@ -17,7 +17,7 @@ import numpy as np
 import torch
 
 from ..step.fine import draw
-from .state import Rule, movable
+from .state import Rule, movable, shift
 
 
 @dataclass(frozen=True)
@@ -119,9 +119,4 @@ class Strays(Rule):
     def __call__(self, s):
         if not self.applies(s):
             return False
-        move = bring_back(s.p, s.place, s.ctl.unit_scale(), self.settings)
-        if not move.any():
-            return False
-        with torch.no_grad():
-            s.place.t += torch.as_tensor(move, dtype=s.place.t.dtype, device=s.place.t.device)
-        return True
+        return shift(s.place, bring_back(s.p, s.place, s.ctl.unit_scale(), self.settings))
