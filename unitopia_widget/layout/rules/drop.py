@@ -19,7 +19,7 @@ import torch
 from ...design.encodings import footprint
 from ..step.fine import FineRaster, draw
 from .legalize import extents, pull_of, shadows
-from .state import Rule, movable, shift
+from .state import Rule, shift, unbound
 
 
 @dataclass(frozen=True)
@@ -35,9 +35,7 @@ def piles(s) -> list:
     """``[(pull (2,), units (n,) int), ...]``: the movable units of the layers pulled by
     directional forces alone at a fixed (open) scale, one entry per direction of pull
     (units bound to ``x=``/``y=`` positions keep their places)."""
-    free = movable(s.place)
-    if s.p.anchor is not None:
-        free &= ~(s.p.anchor.mask.cpu().numpy() > 0).any(1)
+    free = unbound(s.p, s.place)
     out = {}
     for members, forces in s.force_layers or ():
         m = members.cpu().numpy()
@@ -124,14 +122,14 @@ def owner_test(fine: FineRaster, which_unit: torch.Tensor, pix: torch.Tensor):
 
 
 def pixels(fine: FineRaster, units: np.ndarray):
-    """``(which, pix, r, c, lay)``: the footprint pixels of ``units`` (``which`` indexes
-    ``units``; flat index, row, column, the unit's layer), each ``(P,)``."""
+    """``(which, pix, r, c)``: the footprint pixels of ``units`` (``which`` indexes ``units``;
+    flat index, row, column), each ``(P,)``."""
     dev = fine.index.device
     cols = fine.grid.shape[1]
     counts = torch.as_tensor(fine.bounds[units + 1] - fine.bounds[units], device=dev)
     which = torch.repeat_interleave(torch.arange(len(units), device=dev), counts)
     pix = torch.cat([fine.index[fine.bounds[i]:fine.bounds[i + 1]] for i in units])
-    return which, pix, pix // cols, pix % cols, fine.layer[torch.as_tensor(units, device=dev)][which]
+    return which, pix, pix // cols, pix % cols
 
 
 def reach(fine: FineRaster, units: np.ndarray, pull: np.ndarray, limit: np.ndarray) -> np.ndarray:
@@ -144,11 +142,11 @@ def reach(fine: FineRaster, units: np.ndarray, pull: np.ndarray, limit: np.ndarr
     if int(limit.max(initial=0)) <= 0:
         return np.zeros(len(units), dtype=np.int64)
     steps = line(pull, int(limit.max()))
-    which, pix, r, c, lay = pixels(fine, units)
+    which, pix, r, c = pixels(fine, units)
     owned = owner_test(fine, which, pix)
-    lay_of = fine.layer[torch.as_tensor(units, device=which.device)]
     which, r, c = fronts(which, r, c, kinds_of(steps), owned)
-    return sweep(fine, which, r, c, lay_of[which], steps, limit, owned)
+    lay = fine.layer[torch.as_tensor(units, device=which.device)][which]
+    return sweep(fine, which, r, c, lay, steps, limit, owned)
 
 
 @torch.no_grad()

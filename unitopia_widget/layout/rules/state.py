@@ -1,6 +1,6 @@
 """What the rules share: the solver's ``State``, the ``Rule`` they are made from, the step
 sizes and cadence the solver and the rules both read (``Steps``), and the bookkeeping of a
-move made by hand (``movable``, ``forget``, ``shift``) and each unit's overlap at the samples
+move made by hand (``movable``, ``unbound``, ``forget``, ``shift``) and each unit's overlap at the samples
 (``unit_overlap``)."""
 from __future__ import annotations
 
@@ -110,6 +110,15 @@ def movable(place: Placement) -> np.ndarray:
     free = place.keep[:, 0].cpu().numpy() > 0
     for track in place.tracks:
         free[track.index.cpu().numpy()] = False
+    return free
+
+
+def unbound(p, place: Placement) -> np.ndarray:
+    """Bool ``(N,)``: the ``movable`` units of ``place`` that no ``x=``/``y=`` position binds
+    (``p.anchor``, of the solver's Problem ``p``): a finish rule may move them anywhere."""
+    free = movable(place)
+    if p.anchor is not None:
+        free &= ~(p.anchor.mask.cpu().numpy() > 0).any(1)
     return free
 
 

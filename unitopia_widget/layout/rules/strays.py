@@ -17,7 +17,7 @@ import numpy as np
 import torch
 
 from ..step.fine import draw
-from .state import Rule, movable, shift
+from .state import Rule, shift, unbound
 
 
 @dataclass(frozen=True)
@@ -51,18 +51,14 @@ def outside(p, center: np.ndarray, units: np.ndarray) -> np.ndarray:
 def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSettings()) -> np.ndarray:
     """``(N, 2)`` canvas px each unit of the solver's ``Problem`` ``p`` moves (0 for most):
     the movable units of ``place`` (not bound to positions) whose centres lie outside their
-    regions (``outside``), to
-    the nearest free spot wholly inside, looked for on a grid ``spacing`` footprint radii apart
-    out to ``reach`` of the canvas diagonal."""
+    regions (``outside``), to the nearest free spot wholly inside, looked for on a grid
+    ``spacing`` footprint radii apart out to ``reach`` of the canvas diagonal."""
     center, angle = place.transforms()
     xy = center.detach().cpu().numpy().astype(float)
     moved = np.zeros_like(xy)
     if not p.regions:
         return moved
-    free = movable(place)
-    if p.anchor is not None:   # a unit bound to an x=/y= position keeps it
-        free &= ~(p.anchor.mask.cpu().numpy() > 0).any(1)
-    free = np.flatnonzero(free)
+    free = np.flatnonzero(unbound(p, place))   # a unit bound to an x=/y= position keeps it
     strays = free[outside(p, xy, free)]
     if not len(strays):
         return moved
@@ -88,9 +84,9 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
             rr, cc = r[None] + part[:, :1], col[None] + part[:, 1:]      # (d, P)
             on = ((rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)).all(1)
             q = rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)
-            free = on & (fine.inside[lay, q] & (fine.seen[lay, q] < 0.5)).all(1)
-            if bool(free.any()):
-                best = part[int(torch.nonzero(free)[0])]
+            clear = on & (fine.inside[lay, q] & (fine.seen[lay, q] < 0.5)).all(1)
+            if bool(clear.any()):
+                best = part[int(torch.nonzero(clear)[0])]
                 break
         if best is not None:
             fine.index[fine.bounds[i]:fine.bounds[i + 1]] += int(best[0]) * cols + int(best[1])

@@ -1,10 +1,10 @@
 """The footprints drawn once on a raster finer than the layout's, as a checker draws them.
 
 The solver judges the marks on a raster aimed at a mean footprint a few raster px across; a
-move made after the last iteration (``rules.contacts``, ``rules.drop``) is judged on this
-one instead: ``fine_rho`` px per canvas px (capped in size), each footprint cut at alpha
-0.5, with per layer the count of footprints that may not share a pixel with it and the
-pixels inside its region.
+move made after the last iteration (``rules.strays``, ``rules.drop``, ``rules.contacts``) is
+judged on this one instead: ``fine_rho`` px per canvas px (capped in size), each footprint
+cut at alpha 0.5, with per layer the count of footprints that may not share a pixel with it
+and the pixels inside its region.
 """
 from __future__ import annotations
 
