@@ -38,3 +38,38 @@ def test_a_mark_with_no_free_spot_in_reach_stays():
     p, scale = problem(center)
     move = strays.bring_back(p, p.placement, scale, strays.StraysSettings(reach=0.05))
     assert not move.any()                                              # the wall is 50 px away
+
+
+def test_a_mark_poking_out_by_a_third_of_its_ink_moves_in_and_one_grazing_the_wall_stays():
+    # the ellipse's left end is x = 80: one circle's centre 3 px inside it (a third of its
+    # ink out), one at the right end's wall with a sliver out, one in the middle
+    center = np.array([[83.0, 150.0], [309.5, 150.0], [200.0, 150.0]])
+    p, scale = problem(center)
+    after = center + strays.bring_back(p, p.placement, scale)
+    assert np.array_equal(after[1:], center[1:])                       # the sliver stays
+    x, y = after[0]
+    assert 89.5 <= x < 95 and abs(y - 150) < 5   # pushed in (its fine pixels inside), nearest
+
+
+def test_a_mark_of_a_layer_resting_on_another_is_not_moved_into_that_layers_shadow():
+    # a row of circles across a box (layer 0) and, under a pull down, a layer resting on it:
+    # its one circle pokes out of the left wall below the row, where its nearest free spot
+    # would be under the row; it must go above it
+    df = pd.DataFrame({"k": [0] * 19 + [1], "v": 1.0})
+    chart = uw.Chart(df, mark="circle", size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.rect(10, 10, 380, 280),
+                     forces=[uw.DirectionalForce(90)])
+    chart.layer("1").set(blocks=["0"])
+    p = engine.build_problem(bind(chart.df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
+    center = np.zeros((20, 2))
+    row = np.flatnonzero(p.layer == 0)
+    center[row] = np.stack([20.0 + 20 * np.arange(19), np.full(19, 200.0)], 1)
+    lone = int(np.flatnonzero(p.layer == 1)[0])
+    center[lone] = (13.0, 250.0)
+    with torch.no_grad():
+        p.placement.t[:] = torch.tensor(center, dtype=torch.float32)
+    scale = np.full(20, 10 / p.half_w[0])                              # circles 10 px in radius
+    after = center + strays.bring_back(p, p.placement, scale)
+    assert np.array_equal(np.delete(after, lone, 0), np.delete(center, lone, 0))
+    x, y = after[lone]
+    assert 20 <= x and y <= 180                                        # in, above the row
