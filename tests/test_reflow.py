@@ -48,8 +48,11 @@ def test_a_moved_pin_moves_only_the_marks_around_it(chart, base, k):
     r = float(np.median(before.width) / 2)
     row = before.iloc[k]
     frames = []
-    way = np.array([200 - row.x, 150 - row.y])   # towards the middle: the pin stays inside
-    to = np.array([row.x, row.y]) + 2.5 * r * way / np.hypot(*way)
+    # towards the middle (the pin stays inside), by one radius: a live drag's step. A jump of
+    # 2.5 radii into this packing (80% of the ellipse) is absorbed by a window on some pins
+    # and answered by the full warm run on others (4 of 6 on an AMD EPYC, float paths apart)
+    way = np.array([200 - row.x, 150 - row.y])
+    to = np.array([row.x, row.y]) + r * way / np.hypot(*way)
     chart.pin([row.row], x=to[0], y=to[1])
     after = chart.layout(on_frame=frames.append)
     assert set(chart.result.phases) == {"reflow"}, "the reflow answered"
