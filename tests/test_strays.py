@@ -73,3 +73,14 @@ def test_a_mark_of_a_layer_resting_on_another_is_not_moved_into_that_layers_shad
     assert np.array_equal(np.delete(after, lone, 0), np.delete(center, lone, 0))
     x, y = after[lone]
     assert 20 <= x and y <= 180                                        # in, above the row
+
+
+def test_a_mark_left_deep_in_another_moves_to_the_nearest_free_spot_and_one_touching_stays():
+    # two circles 10 px in radius half on top of each other, and a pair barely touching
+    center = np.array([[150.0, 150.0], [160.0, 150.0], [250.0, 150.0], [269.5, 150.0]])
+    p, scale = problem(center)
+    after = center + strays.bring_back(p, p.placement, scale)
+    assert np.array_equal(after[2:], center[2:])                       # the touching pair stays
+    assert (after[:2] != center[:2]).any(axis=1).sum() == 1            # one of the two moves
+    gap = np.hypot(*(after[0] - after[1]))
+    assert 19.5 <= gap < 23                                            # to the nearest free spot

@@ -1,15 +1,18 @@
-"""``strays``: a mark that ends outside its container, or pokes out of it, is brought back in.
+"""``strays``: a mark left outside its container, poking out of it, or deep in another mark
+is moved to a free spot.
 
 The loss pulls ink outside a container back in with a gradient only near the container's
 edge, and a mark that a gradient step carries past the wall late in a layout (a small one
 squeezed between the wall and a large neighbour as the settle runs out) ends wholly outside
 it, where nothing moves it again; a long one pressed out by its neighbours (a strand of hair
-at the foot of a blob) keeps part of its ink out, which the legalising rounds shrink the
-whole layout to mend, a little a round. After the last iteration, every movable unit whose
-centre lies outside its region, or more than ``poke`` of whose ink lies outside it, moves to
-the nearest spot (on the fine raster of ``step.fine``) where its footprint is wholly inside,
-on no footprint it collides with and, in a layer resting on others, out of the shadow they
-cast; where no such spot is within reach, it stays.
+at the foot of a blob) keeps part of its ink out, and marks of a pile still jammed when the
+budget ran out (a stage poured last) stay on top of each other: the legalising rounds shrink
+the whole layout a little a round to mend either. After the last iteration, every movable
+unit whose centre lies outside its region, or more than ``poke`` of whose ink lies outside
+it, or more than ``poke`` of whose footprint lies under others (the most overlapped first),
+moves to the nearest spot (on the fine raster of ``step.fine``) where its footprint is wholly
+inside, on no footprint it collides with and, in a layer resting on others, out of the shadow
+they cast; where no such spot is within reach, it stays.
 """
 from __future__ import annotations
 
@@ -33,7 +36,8 @@ class StraysSettings:
     spacing: float = 0.25          # spots looked at this share of the unit's footprint radius apart
     across: int = 150              # spots looked at on one line across the reach at most
     chunk: int = 4_000_000         # fine pixels looked up at once
-    poke: float = 0.05             # the share of its ink a unit may leave outside its region
+    poke: float = 0.05             # the share of its ink a unit may leave outside its region,
+                                   # and of its footprint under others
 
 
 def outside(p, center: np.ndarray, units: np.ndarray) -> np.ndarray:
@@ -78,6 +82,20 @@ def ink_outside(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.nda
     ink = torch.zeros(n, device=center.device).index_add_(0, owner, values)
     return (torch.zeros(n, device=center.device).index_add_(0, owner, out)
             / ink.clamp_min(1e-9)).cpu().numpy()
+
+
+def overlapped(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
+               rotating: np.ndarray) -> np.ndarray:
+    """``(N,)`` the share of each unit's footprint (margins included) that the loss counts as
+    overlapped by other footprints or lower strata (``CanvasTerms.unit_overlap``), on the
+    layout's raster."""
+    grow = footprint(p.margin) * unit_scale
+    values, index, owner = samples(p, center, angle, p.half_w * grow, p.half_h * grow, rotating)
+    n = len(p.layer)
+    layer = torch.as_tensor(p.layer, device=center.device, dtype=torch.long)
+    over = p.terms.unit_overlap(values, index, owner, layer, n)
+    drawn = torch.zeros(n, device=center.device).index_add_(0, owner, values)
+    return (over / drawn.clamp_min(1e-9)).cpu().numpy()
 
 
 def shadowed(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
@@ -143,7 +161,9 @@ def nearest_spot(free: torch.Tensor, pix: torch.Tensor, shape: tuple, far: float
 def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSettings()) -> np.ndarray:
     """``(N, 2)`` canvas px each unit of the solver's ``Problem`` ``p`` moves (0 for most):
     the movable units of ``place`` (not bound to positions) whose centres lie outside their
-    regions (``outside``) or more than ``poke`` of whose ink does (``ink_outside``), to the
+    regions (``outside``) or more than ``poke`` of whose ink does (``ink_outside``), then
+    those more than ``poke`` of whose footprint others overlap (``overlapped``; most first,
+    each while it still is on the fine raster), to the
     nearest free spot wholly inside and out of the shadow of the layers each rests on
     (``shadowed``), looked for on a grid ``spacing`` footprint radii apart out to ``reach``
     of the canvas diagonal."""
@@ -154,7 +174,13 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
         return moved
     free = np.flatnonzero(unbound(p, place))   # a unit bound to an x=/y= position keeps it
     poking = ink_outside(p, center.detach(), angle.detach(), unit_scale, place.rotating())
-    strays = free[outside(p, xy, free) | (poking[free] > c.poke)]
+    out = outside(p, xy, free) | (poking[free] > c.poke)
+    crowded = overlapped(p, center.detach(), angle.detach(), unit_scale, place.rotating())[free]
+    jammed = ~out & (crowded > c.poke)
+    # the most overlapped first: a pair's other unit is then often free where it is
+    strays = np.concatenate([free[out], free[jammed][np.argsort(-crowded[jammed], kind="stable")]])
+    still = np.zeros(len(xy), bool)
+    still[free[jammed]] = True
     if not len(strays):
         return moved
     fine = draw(p, center.detach(), angle.detach(), unit_scale, place.rotating(), c.fine_rho,
@@ -172,6 +198,9 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
             continue
         lay = int(fine.layer[i])
         fine.lift(i)
+        if still[i] and float((fine.seen[lay, pix] > 0.5).float().mean()) <= c.poke:
+            fine.put(i)   # the units moved before it freed it
+            continue
         step = max(1, int(c.spacing * math.sqrt(len(pix) / math.pi)), int(far / c.across))
         best = nearest_spot(room[lay] & (fine.seen[lay] < 0.5), pix, (rows, cols), far, step,
                             c.chunk)
@@ -184,15 +213,18 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
 
 class Strays(Rule):
     """Once, after the last iteration of a layout that was not cancelled: a movable unit whose
-    centre ended outside its container, or with more than ``poke`` of its ink outside it,
-    moves to the nearest free spot wholly inside it (``bring_back``), out of the shadow of
-    the layers it rests on. Needed by any layout where a late step carries a small mark past
-    the wall, or neighbours press a long one partly out. Corpus, seeds 0-4, ink outside:
-    small triangles piled on a slope (m070) 0.05 -> 0.00% (at seed 4 one ended wholly
-    outside, 0.25%), thin bars in twin discs (m109) 0.08 -> 0.04%, thin bars around a point
-    (m056) 0.11 -> 0.09%; pressed partly out: thin strands in a blob (m049) 0.85 -> 0.22%,
-    spirals under two points (m110) 0.11 -> 0.02%, PNG marks on a slope (m037) 0.09 ->
-    0.03%."""
+    centre ended outside its container, with more than ``poke`` of its ink outside it, or
+    with more than ``poke`` of its footprint under others, moves to the nearest free spot
+    wholly inside it (``bring_back``), out of the shadow of the layers it rests on. Needed by
+    any layout where a late step carries a small mark past the wall, neighbours press a long
+    one partly out, or the budget ends with marks still jammed. Corpus, seeds 0-4, ink
+    outside: small triangles piled on a slope (m070) 0.05 -> 0.00% (at seed 4 one ended
+    wholly outside, 0.25%), thin bars in twin discs (m109) 0.08 -> 0.04%, thin bars around a
+    point (m056) 0.11 -> 0.09%; pressed partly out: thin strands in a blob (m049) 0.85 ->
+    0.22%, spirals under two points (m110) 0.11 -> 0.02%, PNG marks on a slope (m037) 0.09
+    -> 0.03%; under others: snowflakes piled in a blob (m066) overlap 0.43 -> 0.06%, shapes
+    through a neck under two points (m054) 1.11 -> 0.63%, thin bars in twin discs (m102)
+    0.52 -> 0.10%."""
 
     name = "strays"
     phase = "finish"
