@@ -23,8 +23,7 @@ import numpy as np
 import torch
 
 from ...design.encodings import footprint
-from ..step.fine import draw
-from ..step.raster import Planner, render_samples
+from ..step.fine import draw, samples
 from .state import Rule, shift, unbound
 
 
@@ -58,23 +57,12 @@ def outside(p, center: np.ndarray, units: np.ndarray) -> np.ndarray:
     return out
 
 
-def samples(p, center: torch.Tensor, angle: torch.Tensor, half_w: np.ndarray,
-            half_h: np.ndarray, rotating: np.ndarray):
-    """``(values, index, owner)`` ``(M,)``: the marks drawn at ``center (N, 2)`` canvas px,
-    ``angle (N,)`` radians and half sides ``half_w``, ``half_h`` ``(N,)`` canvas px, on the
-    layout's raster (``render_samples``)."""
-    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, p.grid, center.device,
-                   p.sprite_aspects).plan_for(half_w, half_h)
-    as_t = lambda a: torch.as_tensor(a, device=center.device, dtype=torch.float32)   # noqa: E731
-    return render_samples(center, angle, as_t(half_w), as_t(half_h), plan, p.pyramids, p.grid)
-
-
 def ink_outside(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
                 rotating: np.ndarray) -> np.ndarray:
     """``(N,)`` the share of each unit's ink (its mark drawn at ``unit_scale (N,)``, without
     its margin) outside the region its layer may draw in (``CanvasTerms.outside``), on the
     layout's raster."""
-    values, index, owner = samples(p, center, angle, p.half_w * unit_scale,
+    values, index, owner = samples(p, p.grid, center, angle, p.half_w * unit_scale,
                                    p.half_h * unit_scale, rotating)
     layer = torch.as_tensor(p.layer, device=center.device, dtype=torch.long)[owner]
     out = values * p.terms.outside[layer, index.long()].to(values.dtype)
@@ -84,32 +72,29 @@ def ink_outside(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.nda
             / ink.clamp_min(1e-9)).cpu().numpy()
 
 
-def overlapped(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
-               rotating: np.ndarray) -> np.ndarray:
-    """``(N,)`` the share of each unit's footprint (margins included) that the loss counts as
-    overlapped by other footprints or lower strata (``CanvasTerms.unit_overlap``), on the
-    layout's raster."""
-    grow = footprint(p.margin) * unit_scale
-    values, index, owner = samples(p, center, angle, p.half_w * grow, p.half_h * grow, rotating)
+def overlapped(p, feet) -> np.ndarray:
+    """``(N,)`` the share of each unit's footprint that the loss counts as overlapped by other
+    footprints or lower strata (``CanvasTerms.unit_overlap``), from ``feet``: the footprints
+    (margins included) drawn on the layout's raster (``step.fine.samples``)."""
+    values, index, owner = feet
     n = len(p.layer)
-    layer = torch.as_tensor(p.layer, device=center.device, dtype=torch.long)
+    layer = torch.as_tensor(p.layer, device=values.device, dtype=torch.long)
     over = p.terms.unit_overlap(values, index, owner, layer, n)
-    drawn = torch.zeros(n, device=center.device).index_add_(0, owner, values)
+    drawn = torch.zeros(n, device=values.device).index_add_(0, owner, values)
     return (over / drawn.clamp_min(1e-9)).cpu().numpy()
 
 
-def shadowed(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
-             rotating: np.ndarray, fine) -> torch.Tensor | None:
+def shadowed(p, feet, fine) -> torch.Tensor | None:
     """``(L, S)`` bool on the fine raster ``fine`` (``step.fine``): the pixels of each layer
     that rests on others (``strata``) in the shadow those cast, as the loss casts it from the
-    footprints where they are (``CanvasTerms.obstacles``, on the layout's raster): a mark
-    moved there would sit below the layer it rests on. None where no layer rests on another."""
+    footprints ``feet`` (as for ``overlapped``) where they are (``CanvasTerms.obstacles``, on
+    the layout's raster): a mark moved there would sit below the layer it rests on. None where
+    no layer rests on another."""
     terms = p.terms
     if terms.rests is None or not bool(terms.rests.any()):
         return None
-    grow = footprint(p.margin) * unit_scale
-    values, index, owner = samples(p, center, angle, p.half_w * grow, p.half_h * grow, rotating)
-    layer = torch.as_tensor(p.layer, device=center.device, dtype=torch.long)
+    values, index, owner = feet
+    layer = torch.as_tensor(p.layer, device=values.device, dtype=torch.long)
     _, own = terms.coverage(values, index, owner, layer)
     shadow = (terms.obstacles(own) - terms.blocks.to(own) @ own).view(-1, *p.grid.shape)
     coarse, rho = p.grid, fine.grid.rho
@@ -173,32 +158,33 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
     if not p.regions:
         return moved
     free = np.flatnonzero(unbound(p, place))   # a unit bound to an x=/y= position keeps it
-    poking = ink_outside(p, center.detach(), angle.detach(), unit_scale, place.rotating())
+    center, angle, rotating = center.detach(), angle.detach(), place.rotating()
+    poking = ink_outside(p, center, angle, unit_scale, rotating)
     out = outside(p, xy, free) | (poking[free] > c.poke)
-    crowded = overlapped(p, center.detach(), angle.detach(), unit_scale, place.rotating())[free]
+    grow = footprint(p.margin) * unit_scale
+    feet = samples(p, p.grid, center, angle, p.half_w * grow, p.half_h * grow, rotating)
+    crowded = overlapped(p, feet)[free]
     jammed = ~out & (crowded > c.poke)
     # the most overlapped first: a pair's other unit is then often free where it is
     strays = np.concatenate([free[out], free[jammed][np.argsort(-crowded[jammed], kind="stable")]])
-    still = np.zeros(len(xy), bool)
-    still[free[jammed]] = True
     if not len(strays):
         return moved
-    fine = draw(p, center.detach(), angle.detach(), unit_scale, place.rotating(), c.fine_rho,
-                c.max_fine)
+    lost = int(out.sum())   # strays[lost:] are jammed: moved while they still are
+    fine = draw(p, center, angle, unit_scale, rotating, c.fine_rho, c.max_fine)
     room = fine.inside
-    below = shadowed(p, center.detach(), angle.detach(), unit_scale, place.rotating(), fine)
+    below = shadowed(p, feet, fine)
     if below is not None:
         room = room & ~below
     rows, cols = fine.grid.shape
     rho = fine.grid.rho
     far = c.reach * math.hypot(rows, cols)
-    for i in strays:
+    for k, i in enumerate(strays):
         pix = fine.index[fine.bounds[i]:fine.bounds[i + 1]]
         if not len(pix):
             continue
         lay = int(fine.layer[i])
         fine.lift(i)
-        if still[i] and float((fine.seen[lay, pix] > 0.5).float().mean()) <= c.poke:
+        if k >= lost and float((fine.seen[lay, pix] > 0.5).float().mean()) <= c.poke:
             fine.put(i)   # the units moved before it freed it
             continue
         step = max(1, int(c.spacing * math.sqrt(len(pix) / math.pi)), int(far / c.across))

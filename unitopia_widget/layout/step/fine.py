@@ -55,6 +55,18 @@ class FineRaster:
         self.index[moving] += step[self.owner[moving]]
 
 
+def samples(p, grid: RasterGrid, center: torch.Tensor, angle: torch.Tensor,
+            half_w: np.ndarray, half_h: np.ndarray, rotating: np.ndarray):
+    """``(values, index, owner)`` ``(M,)``: the marks of the solver's ``Problem`` ``p`` drawn
+    at ``center (N, 2)`` canvas px, ``angle (N,)`` radians and half sides ``half_w``,
+    ``half_h`` ``(N,)`` canvas px on ``grid`` (``render_samples``); ``rotating (N,)``: units
+    whose patch must hold any rotation."""
+    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, center.device,
+                   p.sprite_aspects).plan_for(half_w, half_h)
+    as_t = lambda a: torch.as_tensor(a, device=center.device, dtype=torch.float32)   # noqa: E731
+    return render_samples(center, angle, as_t(half_w), as_t(half_h), plan, p.pyramids, grid)
+
+
 @torch.no_grad()
 def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
          rotating: np.ndarray, fine_rho: float, max_fine: int) -> FineRaster:
@@ -67,12 +79,9 @@ def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     rho = max(p.grid.rho, min(fine_rho, math.sqrt(max_fine / (w * h * n_layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = center.device
-    hw = p.half_w * footprint(p.margin) * unit_scale
-    hh = p.half_h * footprint(p.margin) * unit_scale
-    plan = Planner(p.sprite, p.sprite_sides, rotating, p.pyramids, grid, dev,
-                   p.sprite_aspects).plan_for(hw, hh)
-    as_t = lambda a: torch.as_tensor(a, device=dev, dtype=torch.float32)   # noqa: E731
-    values, index, owner = render_samples(center, angle, as_t(hw), as_t(hh), plan, p.pyramids, grid)
+    grow = footprint(p.margin) * unit_scale
+    values, index, owner = samples(p, grid, center, angle, p.half_w * grow, p.half_h * grow,
+                                   rotating)
     drawn = values > 0.5
     index, owner = index[drawn].long(), owner[drawn]
     size = grid.shape[0] * grid.shape[1]
