@@ -86,7 +86,9 @@ def test_dragging_a_mark_for_2_s_among_1000_moves_the_others_live_then_pins_it(l
     assert messages <= math.ceil(held / 0.1) + 1, "the widget throttles to one message per 100 ms"
     assert moved >= 10, f"only {moved} frames moved the other marks while the mark was dragged"
     assert received >= moved and paints >= 10, "the view received and drew them"
+    # a drag message's run also ends "done": wait for the drop's pin and its layout
     final = (f"w.status == 'done' and not w.stale and len(w.pinned) == 1 and float(np.hypot("
+             f"w.pinned.x.iloc[0] - {x + DRAG_PX}, w.pinned.y.iloc[0] - {y})) < 1.5 and float(np.hypot("
              f"w.placements.x[{k}] - w.pinned.x.iloc[0], w.placements.y[{k}] - w.pinned.y.iloc[0])) < 0.01")
     assert lab.wait_until(final, timeout=120), lab.eval("[w.status, w.stale, w.error, w.pinned.values.tolist()]")
     assert lab.eval("w.pinned.iloc[0][['x', 'y']].tolist()") == pytest.approx([x + DRAG_PX, y], abs=1.5)
@@ -126,7 +128,9 @@ def test_dragging_a_point_force_for_2_s_under_1000_marks_moves_them_live_then_la
     print(f"held {held:.2f} s: force messages {messages}, frames with marks moved {moved}")
     assert messages <= math.ceil(held / 0.1) + 1, "the widget throttles to one message per 100 ms"
     assert moved >= 10, f"only {moved} frames moved the marks while the force was dragged"
-    final = "w.status == 'done' and not w.stale and not w._chart.result.cancelled"
+    # a drag message's run also ends "done": wait for the drop's force and its layout
+    final = (f"w.status == 'done' and not w.stale and not w._chart.result.cancelled and float(np.hypot("
+             f"w.layers[0].forces[0].x - {x + DRAG_PX}, w.layers[0].forces[0].y - {y})) < 1.5")
     assert lab.wait_until(final, timeout=120), lab.eval("[w.status, w.stale, w.error]")
     force = lab.eval("[w.layers[0].forces[0].x, w.layers[0].forces[0].y]")
     assert force == pytest.approx([x + DRAG_PX, y], abs=1.5), "the force where it was dropped"
