@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from unitopia_widget.layout.rules.drop import reach
+from unitopia_widget.layout.rules.drop import DropSettings, kinds_of, line, reach, step_aside
 from unitopia_widget.layout.step.fine import FineRaster
 from unitopia_widget.layout.step.raster import RasterGrid
 
@@ -46,3 +46,28 @@ def test_a_unit_steps_over_its_own_pixels_as_it_falls():
     one = FineRaster(fine.grid, fine.index, torch.zeros_like(fine.owner), np.array([0, len(fine.index)]),
                      torch.zeros(1, dtype=torch.long), fine.collide, fine.seen, fine.inside)
     assert reach(one, np.array([0]), DOWN, np.array([100])).tolist() == [36]   # to the floor
+
+
+def aside(fine: FineRaster, half_across: float):
+    """``step_aside`` of unit 0, lifted, falling at most 100 px down, stopping 0 px short."""
+    fine.lift(0)
+    down = line(DOWN, 100)
+    who = torch.full((fine.seen.shape[1],), -1, dtype=torch.int32)
+    return step_aside(fine, 0, DOWN, down, kinds_of(down), half_across, 0, who, DropSettings())
+
+
+def test_a_unit_resting_on_an_edge_steps_aside_and_falls_past_it():
+    # a 10 px wide unit (columns 12 to 21) whose right 3 px rest on a post from the floor
+    # (columns 19 to 22): 3 px to its left it clears the post and falls 30 px to the floor
+    fine = raster(60, 40, [(20, 12, 10, 10), (30, 19, 30, 4)])
+    assert aside(fine, 5.0) == (30, -3)
+    # with the post under its middle no step of at most half its width clears it
+    fine = raster(60, 40, [(20, 12, 10, 10), (30, 14, 30, 6)])
+    assert aside(fine, 5.0) is None
+
+
+def test_a_unit_does_not_step_aside_through_another():
+    # the unit rests on a post; a wall stands beside it to the left, so the only way round
+    # the post is through the wall: it stays
+    fine = raster(60, 40, [(20, 12, 10, 10), (30, 19, 30, 4), (0, 8, 60, 4)])
+    assert aside(fine, 5.0) is None

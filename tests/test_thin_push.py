@@ -13,6 +13,7 @@ import torch
 import unitopia_widget as uw
 from ink import ink_metrics
 from unitopia_widget.design.forces import DirectionalForce, PointForce
+from unitopia_widget.layout.rules import drop
 from unitopia_widget.layout.rules.legalize import press
 from unitopia_widget.layout.step.placement import Placement
 from unitopia_widget.layout.step.raster import RasterGrid
@@ -40,18 +41,27 @@ ARROW = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 96 8">
                     '<polygon points="80,0 96,4 80,8" fill="#c33"/></svg>')
 
 
-def test_arrows_pushed_right_fall_until_their_ink_meets():
-    # 60 arrows 12:1 whose heads stand taller than their shafts, pushed right at fill 0.5:
+def arrows() -> uw.Chart:
+    """60 arrows 12:1 whose heads stand taller than their shafts, pushed right at fill 0.5."""
+    return uw.Chart(pd.DataFrame({"v": np.random.default_rng(1).uniform(1, 3, 60)}), mark=ARROW,
+                    size="v", orientation=0.0, container=uw.Container.rect(20, 20, 360, 240),
+                    boundary="open", fill=0.5, forces=[uw.DirectionalForce(0)], canvas=(400, 280),
+                    seed=1)
+
+
+def test_arrows_pushed_right_fall_until_their_ink_meets(monkeypatch):
     # the pile rested with the heads of staggered rows stopped on each other's boxes, a mean
-    # x of 0.58 of the pen; dropped by their ink they pile in its right part
-    c = uw.Chart(pd.DataFrame({"v": np.random.default_rng(1).uniform(1, 3, 60)}), mark=ARROW,
-                 size="v", orientation=0.0, container=uw.Container.rect(20, 20, 360, 240),
-                 boundary="open", fill=0.5, forces=[uw.DirectionalForce(0)], canvas=(400, 280),
-                 seed=1)
+    # x of 0.58 of the pen; dropped by their ink they pile in its right part (0.69); and an
+    # arrow whose head then rests on another's steps aside, past it, and falls on (0.72)
+    c = arrows()
     table = c.layout()
     assert c.result.phases.get("finish.drop") == 1
-    assert (table["x"].mean() - 20) / 360 > 0.62
+    pull = (table["x"].mean() - 20) / 360
+    assert pull > 0.62
     assert ink_metrics(c.to_svg(legend=False), c.canvas)["overlap"] < 0.005
+    monkeypatch.setattr(drop, "step_aside", lambda *args: None)
+    straight = arrows()
+    assert pull > (straight.layout()["x"].mean() - 20) / 360 + 0.015
 
 
 def test_a_shrinking_pile_settles_onto_each_marks_own_floor():
