@@ -286,9 +286,9 @@ class Drop(Rule):
     that moved pull further: thin arrows pushed right (m095) 0.55 -> 0.68, thin bars (m109)
     0.50 -> 0.62, the thin-push kind 0.65 -> 0.69, spiky flakes (m029) 0.37 -> 0.41; strata
     in order, thin arrows (m081) 0.95 -> 0.99, stars on a slope 0.94 -> 0.97. Stepping
-    aside (``step_aside``), seeds 0-4 on the 32 corpus piles it moved: pull up or level in
-    all, rings in twin discs (m068) 0.667 -> 0.702; the thin-push kind at corpus seeds 1-4
-    0.64 / 0.61 / 0.66 / 0.57 -> 0.69 / 0.64 / 0.69 / 0.62."""
+    aside (``step_aside``) moved 10 single-layer piles of the corpus, pull up or level in
+    all, over seeds 0-4 rings in twin discs (m068) 0.667 -> 0.702; the thin-push kind at
+    corpus seeds 1-4 0.64 / 0.61 / 0.66 / 0.57 -> 0.69 / 0.64 / 0.69 / 0.62."""
 
     name = "drop"
     phase = "finish"
