@@ -11,8 +11,8 @@ A unit that then rests on an edge of another's footprint (an arrow's head on the
 another a row away, a disc on the crest of two) steps aside, deepest first, across the pull
 by at most half its width and no further than its path is clear, to the place from which
 it falls furthest, where that fall is longer than the step (``step_aside``); the pile then
-falls again behind it. A unit of a layer resting on others keeps its column: its floor is
-the shadow they cast there, and so does a unit that others rest on: it holds them up.
+falls again behind it. Strata keep their columns: a unit of a layer resting on others has
+its floor in the shadow they cast there, and one that others rest on holds them up.
 """
 from __future__ import annotations
 
@@ -232,17 +232,17 @@ def fall(s, c: DropSettings = DropSettings()) -> np.ndarray:
     rests = np.zeros((count, count), bool) if p.terms.rests is None \
         else p.terms.rests.cpu().numpy() > 0
     keeps_column = rests.any(0) | rests.any(1)
+    who = torch.full((fine.grid.shape[0] * fine.grid.shape[1],), -1, dtype=torch.int32,
+                     device=fine.index.device)   # owner_test's buffer for step_aside
     for pull, units in piles(s):
         side = np.array([-pull[1], pull[0]])
         along = extents(p.half_w * foot, p.half_h * foot, turn, pull)
         across = extents(p.half_w * foot, p.half_h * foot, turn, side)
         # a layer resting on another may not fall past the top of its boxes (``shadows``)
         barrier = np.full(len(p.layer), np.inf) if p.terms.rests is None else shadows(
-            xy, along, across, pull, p.layer, p.terms.rests.cpu().numpy() > 0, units)
+            xy, along, across, pull, p.layer, rests, units)
         down = line(pull, far)
         kinds = kinds_of(down)
-        who = torch.full((fine.grid.shape[0] * fine.grid.shape[1],), -1, dtype=torch.int32,
-                         device=fine.index.device)
         for slide in range(c.slides + 1):
             for _ in range(c.rounds):
                 room = (barrier[units] - (xy[units] + moved[units]) @ pull) * rho
