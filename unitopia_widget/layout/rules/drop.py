@@ -174,10 +174,11 @@ def step_aside(fine: FineRaster, u: int, pull: np.ndarray, down: np.ndarray, kin
     if not len(pix) or limit <= gap:
         return None
     cols = fine.grid.shape[1]
+    row, col = pix // cols, pix % cols
     zero = torch.zeros(len(pix), dtype=torch.long, device=dev)
     owned = owner_test(fine, zero, pix, who)
     lay = fine.layer[u]
-    _, r_down, c_down = fronts(zero, pix // cols, pix % cols, kinds, owned)
+    _, r_down, c_down = fronts(zero, row, col, kinds, owned)
     # how far it can move each way (its front pixels swept sideways), then one fall from
     # each of up to ``places`` sideways places spread over that
     span = max(1, int(half_across))
@@ -185,8 +186,9 @@ def step_aside(fine: FineRaster, u: int, pull: np.ndarray, down: np.ndarray, kin
     ks, offsets = [], []
     for sign in (1.0, -1.0):
         path = line(sign * side, span)
-        which, r, col = fronts(zero, pix // cols, pix % cols, kinds_of(path), owned)
-        clear = int(sweep(fine, which, r, col, lay.expand(len(which)), path, np.array([span]))[0])
+        which, r, c_side = fronts(zero, row, col, kinds_of(path), owned)
+        clear = int(sweep(fine, which, r, c_side, lay.expand(len(which)), path,
+                          np.array([span]))[0])
         if clear > 0:
             k = np.unique(np.linspace(1, clear, min(c.places, clear)).round().astype(int))
             ks.append(k)
