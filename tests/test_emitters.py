@@ -4,6 +4,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+import torch
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import pdist
 from scipy.stats import spearmanr
@@ -11,6 +12,7 @@ from scipy.stats import spearmanr
 import unitopia_widget as uw
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.prepare.bind import bind
+from unitopia_widget.layout.prepare.curves import CurveTrack
 from unitopia_widget.design.bezier import Curve, fit_bezier
 from unitopia_widget.design.emitters import CurveEmitter, GridEmitter, emitter_from_json
 from unitopia_widget.layout.solver import solve
@@ -218,6 +220,38 @@ def test_band_mode_keeps_order_and_lets_marks_leave_the_line():
     assert rho > 0.95, rho
     distance = cKDTree(bezier(S_CURVE)).query(xy)[0]
     assert distance.max() > 0.25 * table["width"].mean()     # stacked sideways, off the curve
+
+
+def test_band_offsets_keep_the_centres_on_the_canvas():
+    # a band mark's offset grows along the normal without bound; a step may carry it off the
+    # canvas, where its raster (and so its loss) is cut away and nothing brings it back
+    curve = Curve(S_CURVE)
+    track = CurveTrack(np.arange(5), curve, "band", np.linspace(0, curve.length, 5),
+                       np.arange(5), True, "cpu")
+    with torch.no_grad():
+        track.v.copy_(torch.tensor([-5000.0, 5000.0, -5000.0, 5000.0, 0.0]))
+    low, high = torch.full((5, 2), 12.0), torch.tensor([[788.0, 588.0]]).expand(5, 2)
+    track.project(low, high)
+    center = track.positions()[0]
+    assert bool(((center >= low - 1e-3) & (center <= high + 1e-3)).all()), center
+    assert float(track.v[4]) == 0.0                      # a centre already on stays
+    assert float(track.v[0]) != 0.0                      # pulled in to the edge, not the curve
+
+
+def test_a_warm_run_starts_band_marks_where_they_ended():
+    # a change (here a margin) runs the layout again from the last one: marks on a band start
+    # where they ended, not back on the curve at their emitted arc lengths
+    df = ordered_frame(30, seed=4)
+    chart = uw.Chart(df, size="v", order="when", emitter=uw.CurveEmitter(S_CURVE, mode="band"),
+                     forces=[uw.PointForce(400, 560)], boundary="open", fill=0.25, iterations=150)
+    before = chart.layout().set_index("row")[["x", "y"]]
+    assert cKDTree(bezier(S_CURVE)).query(before.to_numpy())[0].max() > 20   # off the curve
+    chart.layers[0].set(margin=0.02)
+    frames = []
+    chart.layout(on_frame=lambda frame, *final: frames.append(frame.copy()))
+    start = pd.DataFrame(frames[0][:, :2], columns=["x", "y"], index=chart.placements["row"])
+    moved = np.hypot(*(start.loc[before.index] - before).to_numpy().T)
+    assert moved.max() < 1.0, moved.max()
 
 
 def test_free_mode_lets_marks_leave_the_curve_order():

@@ -73,9 +73,16 @@ class Curve:
         return p0 + w * (p1 - p0), tangent
 
     def nearest_arc(self, points: np.ndarray) -> np.ndarray:
-        """Arc length ``(n,)`` of the curve point nearest to each of ``points (n, 2)``."""
-        d = ((points[:, None, :] - self.polyline[None]) ** 2).sum(-1)
-        return self.arc[np.argmin(d, axis=1)]
+        """Arc length ``(n,)`` of the curve point nearest to each of ``points (n, 2)``: each
+        point's foot on the nearest segment of the polyline (``torch_at``'s curve)."""
+        start, step = self.polyline[:-1], np.diff(self.polyline, axis=0)       # (M - 1, 2)
+        span = np.maximum((step ** 2).sum(1), 1e-18)
+        rel = np.asarray(points, dtype=float)[:, None, :] - start[None]          # (n, M - 1, 2)
+        t = np.clip((rel * step[None]).sum(-1) / span, 0.0, 1.0)
+        gap = ((rel - t[..., None] * step[None]) ** 2).sum(-1)
+        k = np.argmin(gap, axis=1)
+        picked = t[np.arange(len(k)), k]
+        return self.arc[k] + picked * (self.arc[k + 1] - self.arc[k])
 
 
 def fit_bezier(stroke: np.ndarray, tolerance: float = 4.0, max_depth: int = 12) -> np.ndarray:

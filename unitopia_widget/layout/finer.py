@@ -10,8 +10,8 @@ raster sees more overlap and ink outside than the first one did, by more than a 
 keeps (``hidden``), the layout is polished once more from where it ended, on that raster
 (``layout.engine``: the polish's legalising rounds, as the first solve's would have, had
 they seen it). Round marks shrunk alike are still seen (equal discs are laid out at half the
-aimed radius) and are not checked again; nor are units on curve tracks, whose warm start
-puts them back on their curve, not where they ended.
+aimed radius) and are not checked again. Units on curve tracks are checked too: the warm
+start puts each at the arc length (and band offset) of where it ended.
 """
 from __future__ import annotations
 
@@ -35,8 +35,7 @@ def scales_past(problem: Problem, units, result: Result) -> np.ndarray | None:
     them is under ``THIN_ACROSS / FINER`` of ``problem``'s raster px across (the solve shrank
     the marks past what its raster resolves); None where the raster serves."""
     across = thin_across(units, result.unit_scale)
-    if across is None or across * problem.grid.rho * FINER >= THIN_ACROSS \
-            or problem.placement.tracks:
+    if across is None or across * problem.grid.rho * FINER >= THIN_ACROSS:
         return None
     scales = problem.group_scales()
     scales[problem.layer_groups()[units.layer]] = result.unit_scale

@@ -4,7 +4,8 @@ A track holds, per unit, its arc length ``u`` along the curve and (band
 mode) its offset ``v`` along the curve's normal, both canvas px. After every
 step ``project`` sorts the arc lengths back into the units' emission order,
 so order along the curve is kept exactly while marks push each other along
-(line) or stack sideways (band).
+(line) or stack sideways (band); a band's offsets keep the centres on the canvas, as
+free units are kept. A warm start (``restarted``) puts units back where they ended.
 """
 from __future__ import annotations
 
@@ -27,6 +28,30 @@ class CurveTrack:
         self.v = torch.zeros(len(index), dtype=torch.float32, device=device,
                              requires_grad=movable and mode == "band")
 
+    def restarted(self, center: np.ndarray, kept: np.ndarray) -> "CurveTrack":
+        """A new track like this one whose units with ``kept (N,)`` (indexed like the whole
+        layout) start at the curve point nearest their ``center (N, 2)``, canvas px, and
+        (band mode) that centre's offset along the curve's normal there; the rest start at
+        this track's arc lengths and offsets."""
+        index = self.index.cpu().numpy()
+        arc = self.u.detach().cpu().numpy().astype(float)
+        offset = self.v.detach().cpu().numpy().astype(float)
+        mine = kept[index]
+        if mine.any():
+            c = np.asarray(center, dtype=float)[index[mine]]
+            arc[mine] = self.curve.nearest_arc(c)
+            if self.mode == "band":   # along the normal ``positions`` turns the offset by
+                point, tangent = (x.numpy() for x in self.curve.torch_at(torch.as_tensor(arc[mine])))
+                normal = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
+                offset[mine] = ((c - point) * normal).sum(1)
+        ranks = np.empty(len(index), dtype=np.int64)
+        ranks[self.by_rank.cpu().numpy()] = np.arange(len(index))
+        track = CurveTrack(index, self.curve, self.mode, arc, ranks, self.u.requires_grad,
+                           self.u.device)
+        with torch.no_grad():
+            track.v.copy_(torch.as_tensor(offset, dtype=track.v.dtype))
+        return track
+
     def parameters(self) -> list[torch.Tensor]:
         return [p for p in (self.u, self.v) if p.requires_grad]
 
@@ -37,7 +62,22 @@ class CurveTrack:
         return point + normal * self.v[:, None], tangent
 
     @torch.no_grad()
-    def project(self) -> None:
-        """Clamp to the curve and restore the emission order along it."""
+    def project(self, low: torch.Tensor, high: torch.Tensor) -> None:
+        """Clamp to the curve, restore the emission order along it and (band mode) keep each
+        centre between ``low`` and ``high`` (``(n, 2)`` canvas px, as free units are kept on
+        the canvas) by clamping its offset along the normal."""
         self.u.clamp_(0, self.curve.length)
         self.u[self.by_rank] = torch.sort(self.u).values
+        if not self.v.requires_grad:
+            return
+        point, tangent = self.curve.torch_at(self.u)
+        normal = torch.stack([-tangent[:, 1], tangent[:, 0]], dim=1)
+        # per axis, the offsets v with low <= point + normal * v <= high (none where the
+        # normal is flat along that axis); where no offset keeps the centre on, v stays
+        safe = torch.where(normal.abs() > 1e-6, normal, torch.ones_like(normal))
+        a, b = (low - point) / safe, (high - point) / safe
+        flat = normal.abs() <= 1e-6
+        lo = torch.where(flat, torch.full_like(a, -torch.inf), torch.minimum(a, b)).amax(1)
+        hi = torch.where(flat, torch.full_like(a, torch.inf), torch.maximum(a, b)).amin(1)
+        ok = lo <= hi
+        self.v.copy_(torch.where(ok, torch.minimum(torch.maximum(self.v, lo), hi), self.v))

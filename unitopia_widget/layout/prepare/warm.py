@@ -28,15 +28,17 @@ from .start import footprint_radius
 
 
 def replace_start(place: Placement, center=None, angle=None, movable=None, turnable=None,
-                  drift=None) -> Placement:
-    """A new ``Placement`` like ``place`` with the given starting arrays replaced."""
+                  drift=None, tracks=None) -> Placement:
+    """A new ``Placement`` like ``place`` with the given starting arrays (and curve
+    ``tracks``) replaced."""
     t, theta = place.t.detach().cpu().numpy(), place.theta.detach().cpu().numpy()
     old_drift = None if place.drift is None else place.drift.cpu().numpy()
     return Placement(t if center is None else center, theta if angle is None else angle,
                      place.movable.cpu().numpy() if movable is None else movable,
                      place.turnable if turnable is None else turnable, place.device,
                      orientation=place.orientation, orientation_weight=place.orientation_weight,
-                     tracks=place.tracks, drift=old_drift if drift is None else drift)
+                     tracks=place.tracks if tracks is None else tracks,
+                     drift=old_drift if drift is None else drift)
 
 
 def snapshot(units, layers, result) -> pd.DataFrame:
@@ -123,8 +125,10 @@ def warm_problem(problem, units, layers, canvas, previous: pd.DataFrame,
             center[added] = free_room(region, center, radius, taken, added)
     stage = None if p.stage is None else np.where(kept, 0, p.stage)
     arriving = ~kept & ~is_pinned & np.array([layers[li].emitter is not None for li in units.layer])
+    tracks = [track.restarted(center, kept) for track in place.tracks]
     return dataclasses.replace(
-        p, placement=replace_start(place, center, angle, drift=drift), group_scale=group_scale,
+        p, placement=replace_start(place, center, angle, drift=drift, tracks=tracks),
+        group_scale=group_scale,
         scale=float(group_scale[0]), stage=stage, travelling=bool(arriving.any()))
 
 

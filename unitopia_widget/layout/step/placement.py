@@ -107,7 +107,7 @@ class Placement:
         low = torch.minimum(half, size / 2)
         self.t.copy_(torch.minimum(torch.maximum(self.t, low), size - low))
         for track in self.tracks:
-            track.project()
+            track.project(low[track.index], size - low[track.index])
 
 
 def frame(place: Placement, scale: np.ndarray) -> np.ndarray:
