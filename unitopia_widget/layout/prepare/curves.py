@@ -41,7 +41,8 @@ class CurveTrack:
             c = np.asarray(center, dtype=float)[index[mine]]
             arc[mine] = self.curve.nearest_arc(c)
             if self.mode == "band":   # along the normal ``positions`` turns the offset by
-                point, tangent = (x.numpy() for x in self.curve.torch_at(torch.as_tensor(arc[mine])))
+                at = torch.as_tensor(arc[mine], dtype=torch.float32)
+                point, tangent = (x.numpy().astype(float) for x in self.curve.torch_at(at))
                 normal = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
                 offset[mine] = ((c - point) * normal).sum(1)
         ranks = np.empty(len(index), dtype=np.int64)
