@@ -139,7 +139,7 @@ def pixels(fine: FineRaster, units: np.ndarray):
     cols = fine.grid.shape[1]
     counts = torch.as_tensor(fine.bounds[units + 1] - fine.bounds[units], device=dev)
     which = torch.repeat_interleave(torch.arange(len(units), device=dev), counts)
-    pix = torch.cat([fine.index[fine.bounds[i]:fine.bounds[i + 1]] for i in units])
+    pix = torch.cat([fine.pixels(i) for i in units])
     return which, pix, pix // cols, pix % cols
 
 
@@ -169,7 +169,7 @@ def step_aside(fine: FineRaster, u: int, pull: np.ndarray, down: np.ndarray, kin
     fall; None where no place lets it fall further than it moves aside. Only the unit's
     front pixels are looked up (``fronts``); ``who``: ``owner_test``'s buffer, one for a pile."""
     dev = fine.index.device
-    pix = fine.index[fine.bounds[u]:fine.bounds[u + 1]]
+    pix = fine.pixels(u)
     limit = len(down) - 1
     if not len(pix) or limit <= gap:
         return None
@@ -269,8 +269,7 @@ def fall(s, c: DropSettings = DropSettings()) -> np.ndarray:
                 fine.lift(u)
                 by = step_aside(fine, u, pull, down, kinds, across[u] * rho, gap, who, c)
                 if by is not None:
-                    fine.index[fine.bounds[u]:fine.bounds[u + 1]] += \
-                        by[0] * fine.grid.shape[1] + by[1]
+                    fine.move_lifted(u, *by)
                     moved[u] += np.array([by[1], by[0]]) / rho
                     stepped = True
                 fine.put(u)

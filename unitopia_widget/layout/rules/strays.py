@@ -179,7 +179,7 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
     rho = fine.grid.rho
     far = c.reach * math.hypot(rows, cols)
     for k, i in enumerate(strays):
-        pix = fine.index[fine.bounds[i]:fine.bounds[i + 1]]
+        pix = fine.pixels(i)
         if not len(pix):
             continue
         lay = int(fine.layer[i])
@@ -191,7 +191,7 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
         best = nearest_spot(room[lay] & (fine.seen[lay] < 0.5), pix, (rows, cols), far, step,
                             c.chunk)
         if best is not None:
-            fine.index[fine.bounds[i]:fine.bounds[i + 1]] += best[0] * cols + best[1]
+            fine.move_lifted(i, *best)
             moved[i] = (best[1] / rho, best[0] / rho)
         fine.put(i)
     return moved

@@ -31,15 +31,24 @@ class FineRaster:
     seen: torch.Tensor      # (L, S) float, footprints on each pixel that layer a collides with
     inside: torch.Tensor    # (L, S) bool, pixels at least half inside layer a's region
 
+    def pixels(self, i: int) -> torch.Tensor:
+        """``(P,)`` unit ``i``'s flat fine px (a view of ``index``)."""
+        return self.index[self.bounds[i]:self.bounds[i + 1]]
+
     def lift(self, i: int) -> None:
         """Take unit ``i``'s pixels off ``seen``."""
         a = int(self.layer[i])
-        self.seen[:, self.index[self.bounds[i]:self.bounds[i + 1]]] -= self.collide[:, a:a + 1]
+        self.seen[:, self.pixels(i)] -= self.collide[:, a:a + 1]
 
     def put(self, i: int) -> None:
         """Put unit ``i``'s pixels (as they are in ``index``) back on ``seen``."""
         a = int(self.layer[i])
-        self.seen[:, self.index[self.bounds[i]:self.bounds[i + 1]]] += self.collide[:, a:a + 1]
+        self.seen[:, self.pixels(i)] += self.collide[:, a:a + 1]
+
+    def move_lifted(self, i: int, row: int, column: int) -> None:
+        """Move lifted unit ``i``'s pixels by ``row``, ``column`` fine px on ``index`` alone
+        (``put`` puts them back on ``seen`` where they then are)."""
+        self.pixels(i).add_(row * self.grid.shape[1] + column)
 
     def shift(self, units: np.ndarray, by: np.ndarray) -> None:
         """Move each of ``units (n,)`` by ``by (n,)`` flat px (rows times columns plus columns)
