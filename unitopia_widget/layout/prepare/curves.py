@@ -9,6 +9,8 @@ free units are kept. A warm start (``restarted``) puts units back where they end
 """
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 import torch
 
@@ -45,12 +47,10 @@ class CurveTrack:
                 point, tangent = (x.numpy().astype(float) for x in self.curve.torch_at(at))
                 normal = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
                 offset[mine] = ((c - point) * normal).sum(1)
-        ranks = np.empty(len(index), dtype=np.int64)
-        ranks[self.by_rank.cpu().numpy()] = np.arange(len(index))
-        track = CurveTrack(index, self.curve, self.mode, arc, ranks, self.u.requires_grad,
-                           self.u.device)
-        with torch.no_grad():
-            track.v.copy_(torch.as_tensor(offset, dtype=track.v.dtype))
+        track = copy.copy(self)   # the same units, curve, mode and order
+        track.u, track.v = (torch.tensor(x, dtype=torch.float32, device=old.device,
+                                         requires_grad=old.requires_grad)
+                            for x, old in ((arc, self.u), (offset, self.v)))
         return track
 
     def parameters(self) -> list[torch.Tensor]:
