@@ -19,7 +19,7 @@ from ..step.losses import CanvasTerms
 from ..step.placement import Placement, frame
 from ..step.raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyramid
 from ..step.strata import Radial, sweep_of
-from . import arrange, positions
+from . import arrange, fit, positions
 from .fields import region_fields
 from .kept import kept
 from .order import start_order
@@ -152,6 +152,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
                    forces=[layer.forces for layer in layers], scale=scale,
                    free_scale=free_scale, max_iterations=cap, device=device,
                    scale_group=scale_group, group_scale=group_scale, group_free=group_free,
+                   group_cap=fit.group_caps(units, layers, canvas, scale_group, group_free),
                    reach=room_reach(units), disc=disc, ink_share=units.ink_share, resolved=resolved,
                    stage=np.array([depth[i] for i in units.layer]),
                    travelling=any(layer.emitter is not None for layer in layers), anchor=anchor,

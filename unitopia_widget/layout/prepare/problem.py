@@ -32,6 +32,7 @@ class Problem:
     scale_group: np.ndarray | None = None  # (L,) scale group per layer; None: one shared scale
     group_scale: np.ndarray | None = None  # (G,) initial scale per group; None: [scale]
     group_free: np.ndarray | None = None   # (G,) bool, controlled groups; None: [free_scale]
+    group_cap: np.ndarray | None = None    # (G,) the most a controlled group's scale grows to (fit.group_caps); None: no cap
     reach: np.ndarray | None = None        # (N,) ink radius less margin band at scale 1 (room)
     disc: np.ndarray | None = None         # (N,) the disc a packed footprint needs at scale 1 (start.footprint_radius)
     sprite_aspects: list | None = None     # width / height of each sprite's finest level (None: 1)

@@ -35,7 +35,11 @@ class FillScale(Rule):
     little); give way above it once marks rest, or as they leave the container. Poking out is
     worse than touching: room never grows a scale past a mark outside. Needed by closed
     boundaries (the scale is controlled, not learned: a gradient balance between fill and
-    overlap settles at a few percent of overlap with spiky marks). Acts when a scale moved."""
+    overlap settles at a few percent of overlap with spiky marks). No scale grows past its
+    group's cap (``prepare.fit``), the largest at which each of its marks still fits somewhere
+    in its container: a mark of an outlying size would otherwise outgrow every place, and a
+    scale at its cap has no room left to grow into (the settle goes on only as long as a
+    scale grows). Acts when a scale moved."""
 
     name = "fill-scale"
     reads = ("overlap_g", "outside_g", "room", "grow_outside", "travelling", "ctl")
@@ -55,7 +59,10 @@ class FillScale(Rule):
             s.room & (s.overlap_g < 1.5 * c.grow_overlap) & (s.outside_g < s.grow_outside)))
         shrink = ctl.free & ((crowd > 1.5 * c.grow_overlap) | (s.outside_g > c.grow_overlap)) \
             & (not s.travelling)
+        before = ctl.log.copy()
         ctl.log += c.scale_step * (grow.astype(float) - shrink.astype(float))
-        if grow.any():
+        if s.p.group_cap is not None:   # no scale grows past where its largest mark fits
+            ctl.log = np.minimum(ctl.log, np.log(s.p.group_cap))
+        if (ctl.log > before).any():
             s.since_best = 0
-        return bool(grow.any() or shrink.any())
+        return bool((ctl.log != before).any())
