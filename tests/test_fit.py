@@ -19,7 +19,7 @@ pytestmark = pytest.mark.usefixtures("one_thread")
 
 SQUARE = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
                      '<rect width="10" height="10" fill="#555"/></svg>')
-FLAT = (200, 150, 190, 45)   # a flat ellipse: its widest disc is 45 px, its area that of 70
+FLAT = (200, 150, 190, 45)   # a flat ellipse: its widest disc is 45 px in radius
 
 
 def test_a_square_fits_a_band_up_to_the_bands_width_at_its_own_angle():
