@@ -17,6 +17,12 @@ import torch
 from ...design.bezier import Curve
 
 
+def normals(tangent: torch.Tensor) -> torch.Tensor:
+    """``(n, 2)`` the curve's unit normals, its unit tangents ``(n, 2)`` turned a quarter
+    (the direction a band's offsets ``v`` point)."""
+    return torch.stack([-tangent[:, 1], tangent[:, 0]], dim=1)
+
+
 class CurveTrack:
     """Units ``index (n,)`` on ``curve``, in ``ranks (n,)`` order, starting at arc lengths ``arc (n,)``."""
 
@@ -44,9 +50,9 @@ class CurveTrack:
             arc[mine] = self.curve.nearest_arc(c)
             if self.mode == "band":   # along the normal ``positions`` turns the offset by
                 at = torch.as_tensor(arc[mine], dtype=torch.float32)
-                point, tangent = (x.numpy().astype(float) for x in self.curve.torch_at(at))
-                normal = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
-                offset[mine] = ((c - point) * normal).sum(1)
+                point, tangent = self.curve.torch_at(at)
+                normal = normals(tangent).numpy().astype(float)
+                offset[mine] = ((c - point.numpy().astype(float)) * normal).sum(1)
         track = copy.copy(self)   # the same units, curve, mode and order
         track.u, track.v = (torch.tensor(x, dtype=torch.float32, device=old.device,
                                          requires_grad=old.requires_grad)
@@ -59,8 +65,7 @@ class CurveTrack:
     def positions(self):
         """Centres ``(n, 2)`` and unit tangents ``(n, 2)``."""
         point, tangent = self.curve.torch_at(self.u)
-        normal = torch.stack([-tangent[:, 1], tangent[:, 0]], dim=1)
-        return point + normal * self.v[:, None], tangent
+        return point + normals(tangent) * self.v[:, None], tangent
 
     @torch.no_grad()
     def project(self, low: torch.Tensor, high: torch.Tensor) -> None:
@@ -72,7 +77,7 @@ class CurveTrack:
         if not self.v.requires_grad:
             return
         point, tangent = self.curve.torch_at(self.u)
-        normal = torch.stack([-tangent[:, 1], tangent[:, 0]], dim=1)
+        normal = normals(tangent)
         # per axis, the offsets v with low <= point + normal * v <= high (none where the
         # normal is flat along that axis); where no offset keeps the centre on, v stays
         safe = torch.where(normal.abs() > 1e-6, normal, torch.ones_like(normal))
