@@ -22,6 +22,7 @@ from ..step.strata import Radial, sweep_of
 from . import arrange, fit, positions
 from .fields import region_fields
 from .kept import kept
+from .lattice import start_rho
 from .order import start_order
 from .pack import thin
 from .problem import Cancelled, Problem
@@ -52,7 +53,7 @@ def build_problem(units: Units, layers, canvas, seed: int, device: str,
     group_scale, group_free, scale_group = initial_scale(units, layers, canvas, scales, caps)
     group_scale = packed_scales(units, layers, order, canvas, group_scale, group_free,
                                 scale_group, caps, seed)
-    rho_start = min(1.0, 600.0 / max(canvas))   # the start's region raster
+    rho_start = start_rho(canvas)   # the start's region raster
     group_scale, group_free = arrange.grid_scales(units, layers, canvas, group_scale, group_free,
                                                   scale_group, rho_start)
     group_scale, group_free = positions.capped_scales(units, layers, canvas, group_scale,

@@ -24,22 +24,20 @@ import math
 import numpy as np
 from scipy import ndimage, signal
 
-from .lattice import container_region
+from ...design.scene import random_range
+from .lattice import container_region, start_rho
+from .start import layer_angle
 
-FIT_SIDE = 600       # raster px along the canvas's long side on which marks are fitted: the
-                     # raster the start and the widest disc read (its region is made once)
 GROW = 2.0           # the bracket's step past a scale at which the mark fits
 BRACKET = 5          # the most steps the bracket takes
 BISECT = 8           # halvings of the bracket (log scale: under 0.3% of the scale)
 
 
 def fixed_angle(layer) -> float | None:
-    """The angle (radians) every mark of ``layer`` keeps, or None where its marks may turn
-    or draw their own angles."""
-    o = layer.orientation
-    if layer.rotate or not (o is None or isinstance(o, (int, float))):
-        return None
-    return math.radians(o or 0.0)
+    """The angle (radians) every mark of ``layer`` keeps (the start's, ``start.layer_angle``),
+    or None where its marks may turn or draw their own angles."""
+    angle, turnable = layer_angle(layer)
+    return None if turnable or random_range(layer.orientation) is not None else angle
 
 
 def ink_at(mark, half_w: float, half_h: float, scale: float, rho: float,
@@ -103,7 +101,7 @@ def layer_cap(units, layer, canvas, i: int) -> float:
     mine = np.flatnonzero(units.layer == i)
     if angle is None or len(mine) == 0:
         return math.inf
-    region = container_region(layer.region, canvas, min(1.0, FIT_SIDE / max(canvas)))
+    region = container_region(layer.region, canvas, start_rho(canvas))   # made for the start
     widest = float(region.depth.max())
     full = math.sqrt(region.area / float(units.area[mine].sum()))   # ink covering it all
     corner = np.hypot(units.half_w, units.half_h)

@@ -9,6 +9,14 @@ import numpy as np
 from ..step.distance import edt
 from .kept import kept
 
+START_SIDE = 600.0   # raster px along the canvas's long side (at most 1 per canvas px) on which
+                     # the start reads its containers: widest discs, packing, fits
+
+
+def start_rho(canvas) -> float:
+    """Raster px per canvas px of the start's container regions on ``canvas`` (w, h)."""
+    return min(1.0, START_SIDE / max(canvas))
+
 
 class Region:
     """A container's inside, sampled on a raster, for placing points.

@@ -11,7 +11,7 @@ import torch
 from ...design.encodings import footprint
 from ...design.sharing import by_container
 from ...design.units import Units
-from .lattice import container_region
+from .lattice import container_region, start_rho
 from .pack import STEP, Packing, packable, thin
 from .start import emission_ranks, footprint_radius, later_radius, pack_layer, spot_cost
 
@@ -97,7 +97,7 @@ def scale_cap(units: Units, layers, canvas, i: int) -> float:
 
 def widest_disc(container, canvas) -> float:
     """Radius (canvas px) of the widest disc inside ``container`` on the canvas."""
-    return float(container_region(container, canvas, min(1.0, 600.0 / max(canvas))).depth.max())
+    return float(container_region(container, canvas, start_rho(canvas)).depth.max())
 
 
 def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_group, caps, seed):
@@ -111,7 +111,7 @@ def packed_scales(units, layers, order, canvas, group_scale, group_free, scale_g
     cannot reach would start the pile overflowing the container (the layers resting on it
     outside it), never to settle."""
     out = np.array(group_scale, dtype=float)
-    rho = min(1.0, 600.0 / max(canvas))
+    rho = start_rho(canvas)
     radius, regions = footprint_radius(units), {}
     for g in range(len(out)):
         members = [i for i in order if scale_group[i] == g and layers[i].emitter is None]

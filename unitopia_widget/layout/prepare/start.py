@@ -120,7 +120,7 @@ def start_positions(units, layers, order, canvas, scale, grid, generator) -> Sta
         speed = 1.0 if emitter is None else emitter.speed
         s.movable[idx] = speed > 0
         s.drift[idx] *= speed * DRIFT_SPEED * float(r.mean())
-        s.angle[idx], s.turnable[idx] = _angles(layer)
+        s.angle[idx], s.turnable[idx] = layer_angle(layer)
         span = random_range(layer.orientation)
         if span is not None:   # each mark turned by its own angle, drawn from the seed
             draw = torch.rand(len(idx), generator=generator, dtype=torch.float64).numpy()
@@ -314,7 +314,7 @@ def footprint_radius(units) -> np.ndarray:
     return np.sqrt(units.area / math.pi / compact) * footprint(units.margin)
 
 
-def _angles(layer):
+def layer_angle(layer):
     """(starting angle in radians, turnable) for the units of ``layer``."""
     o = layer.orientation
     if isinstance(o, (int, float)) and o is not None:
@@ -366,4 +366,4 @@ def orientation_targets(units, layers, canvas, device):
 def any_angle(layers) -> bool:
     """Whether some layer's marks turn or stand at an angle (then every patch holds any rotation)."""
     return any(turn or abs(angle) > 1e-6 or random_range(layer.orientation) is not None
-               for layer, (angle, turn) in zip(layers, map(_angles, layers)))
+               for layer, (angle, turn) in zip(layers, map(layer_angle, layers)))
