@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from unitopia_widget.layout.rules.drop import DropSettings, kinds_of, line, reach, step_aside
+from unitopia_widget.layout.rules.drop import DropSettings, kinds_of, line, owner_test, reach, step_aside
 from unitopia_widget.layout.step.fine import FineRaster
 from unitopia_widget.layout.step.raster import RasterGrid
 
@@ -71,3 +71,23 @@ def test_a_unit_does_not_step_aside_through_another():
     # the post is through the wall: it stays
     fine = raster(60, 40, [(20, 12, 10, 10), (30, 19, 30, 4), (0, 8, 60, 4)])
     assert aside(fine, 5.0) is None
+
+
+def test_a_shared_pixel_is_the_later_units_whatever_the_order_and_threads():
+    # two units on the same 300 x 300 px: the later one (index 1) listed first, so that a
+    # plain assignment (the last write wins) gives the pixels to unit 0 on one thread, and on
+    # two to whichever thread writes last, as the machine's load decides (the layout of a
+    # directional pile then changed with the load)
+    fine = raster(300, 300, [(0, 0, 300, 300), (0, 0, 300, 300)])
+    pix = torch.arange(300 * 300).repeat(2)
+    which = torch.cat([torch.ones(300 * 300, dtype=torch.long), torch.zeros(300 * 300, dtype=torch.long)])
+    rows, cols = torch.arange(300).repeat_interleave(300), torch.arange(300).repeat(300)
+    before = torch.get_num_threads()
+    try:
+        for count in (1, 2):
+            torch.set_num_threads(count)
+            owned = owner_test(fine, which, pix)
+            assert bool(owned(torch.ones_like(rows), rows, cols).all())
+            assert not bool(owned(torch.zeros_like(rows), rows, cols).any())
+    finally:
+        torch.set_num_threads(before)

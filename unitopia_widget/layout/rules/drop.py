@@ -118,13 +118,15 @@ def sweep(fine: FineRaster, which, r, c, lay, steps: np.ndarray, limit: np.ndarr
 def owner_test(fine: FineRaster, which_unit: torch.Tensor, pix: torch.Tensor, who=None):
     """``owned(which, rows, columns)``: whether each pixel is one of its unit's own, the
     pixels ``pix (P,)`` of units ``which_unit (P,)`` (indices into the caller's list). A
-    pixel two of them share is one's only; the other, looking it up, finds it crowded anyway.
+    pixel two of them share is the later one's only (a maximum, not an assignment: two
+    threads writing one pixel land in an order the machine's load decides, and so did the
+    layout); the other, looking it up, finds it crowded anyway.
     ``who``: an int32 buffer of -1 on every fine px to mark them on (the caller sets ``pix``
     back to -1), else a new one."""
     rows, cols = fine.grid.shape
     if who is None:
         who = torch.full((rows * cols,), -1, dtype=torch.int32, device=pix.device)
-    who[pix] = which_unit.to(torch.int32)
+    who.scatter_reduce_(0, pix, which_unit.to(torch.int32), "amax")
 
     def owned(which, rr, cc):
         on = (rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)
