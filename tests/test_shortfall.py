@@ -96,6 +96,24 @@ def test_one_mark_that_caps_a_closed_scale_is_named_with_its_row_value_and_range
     assert covered < 25 and empty > 50
 
 
+def test_a_square_held_where_it_stops_fitting_a_slanted_band_is_named_too():
+    # a band 70 px wide at 37 degrees: a square fits it upright only about 50 px across,
+    # 0.7 of the band's widest disc, where the fill controller stops growing the scale
+    # (``fit.layer_cap``); the other squares are 6 px, and 70% of the band is left empty
+    v = np.random.default_rng(0).uniform(1, 2, 40)
+    v[7] = 100
+    a = np.arctan2(300, 400)
+    along, across = 420 * np.array([np.cos(a), np.sin(a)]), 70 * np.array([-np.sin(a), np.cos(a)])
+    corner = np.array([40.0, 30.0])
+    band = [tuple(p) for p in (corner, corner + along, corner + along + across, corner + across)]
+    c = uw.Chart(pd.DataFrame({"v": v}), mark="square", size="v", container=uw.Container.polygon(band),
+                 canvas=(480, 360), seed=0)
+    capped = [m for m in said(c.layout) if "caps the scale" in m]
+    assert len(capped) == 1 and "row 7 (size=100)" in capped[0], capped
+    side = c.placements.loc[7, "width"]
+    assert 45 < side < 52   # held at the fit, not the disc (70 px)
+
+
 STRAND = uw.Mark.svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 100">'
                      '<rect x="3.5" width="3" height="100" fill="#555"/></svg>')
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..design.encodings import footprint
 from ..design.sharing import by_container
+from .prepare.fit import layer_cap
 from .prepare.lattice import container_region
 from .prepare.pack import thin
 from .prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, widest_disc, scale_cap
@@ -23,7 +24,9 @@ SHORT = 0.85      # an open fill whose marks' ink covers under this share of the
 EMPTY = 0.5       # a closed container whose footprints cover under this share is left empty
 #                   (a full one's cover most of it: discs pack into about 0.9)
 CAPPED = 0.8      # a final scale at least this share of a layer's cap (its longest mark in the
-#                   container's widest disc) is held by that mark
+#                   container's widest disc, or where its largest marks no longer fit at
+#                   their angle: ``fit.layer_cap``, the fill controller's ceiling) is held by
+#                   that mark
 OUTLIER = 3.0     # the capping mark's long side over the median mark's: one mark, not the band
 LEFT_EMPTY = 0.25  # a capped container with more than this share farther than a median mark's
 #                    radius from every mark is left empty (footprint area alone misreads thin
@@ -151,7 +154,10 @@ def warn_capped_scale(units, layers, canvas, result, df) -> None:
         long = 2 * np.maximum(units.half_w, units.half_h) * unit_scale   # px
         for i in members:
             at = units.layer == i
-            if unit_scale[at][0] < CAPPED * scale_cap(units, layers, canvas, i):
+            cap = scale_cap(units, layers, canvas, i)
+            if unit_scale[at][0] < CAPPED * cap:   # held where its largest marks stop fitting?
+                cap = min(cap, layer_cap(units, layers[i], canvas, i))
+            if unit_scale[at][0] < CAPPED * cap:
                 continue
             j = int(np.flatnonzero(at)[np.argmax(long[at])])
             median = float(np.median(long[mine]))
