@@ -42,28 +42,33 @@ def overlap(table) -> float:
     return float(lens.sum() / (np.pi * r ** 2).sum())
 
 
-@pytest.mark.parametrize("k", [20, 150])
-def test_a_moved_pin_moves_only_the_marks_around_it(chart, base, k):
+def test_a_moved_pin_moves_only_the_marks_around_it(base):
+    # ten pins, each moved towards the middle (the pin stays inside) by one radius: a live
+    # drag's step. The reflow answers most of them (9 or 10 of these 10 on an AMD EPYC, by the
+    # packing; 25-26 of 30 pins); where its window spreads past the reflow's bound, the full
+    # warm run answers instead. A jump of 2.5 radii into this packing (80% of the ellipse) is
+    # absorbed by a window on some pins and answered by the full warm run on others
     before = base.placements
     r = float(np.median(before.width) / 2)
-    row = before.iloc[k]
-    frames = []
-    # towards the middle (the pin stays inside), by one radius: a live drag's step. A jump of
-    # 2.5 radii into this packing (80% of the ellipse) is absorbed by a window on some pins
-    # and answered by the full warm run on others (4 of 6 on an AMD EPYC, float paths apart)
-    way = np.array([200 - row.x, 150 - row.y])
-    to = np.array([row.x, row.y]) + r * way / np.hypot(*way)
-    chart.pin([row.row], x=to[0], y=to[1])
-    after = chart.layout(on_frame=frames.append)
-    assert set(chart.result.phases) == {"reflow"}, "the reflow answered"
-    assert chart.result.iterations <= 100 and len(frames) >= 1
-    moved = np.hypot(after.x - before.x, after.y - before.y).to_numpy()
-    far = np.hypot(before.x - to[0], before.y - to[1]).to_numpy() > 5 * r
-    assert np.median(moved[far]) < 0.1 * r and (moved > 0.1 * r).mean() < 0.2
-    held = after.set_index("row").loc[row.row]
-    assert np.hypot(held.x - to[0], held.y - to[1]) < 1e-3
-    assert overlap(after) < 0.01 and chart.result.stats["overlap"] < 0.005
-    assert after.width.to_numpy() == pytest.approx(before.width.to_numpy()), "the scale kept"
+    answered = 0
+    for k in range(15, 300, 30):
+        chart, row, frames = laid_copy(base), before.iloc[k], []
+        way = np.array([200 - row.x, 150 - row.y])
+        to = np.array([row.x, row.y]) + r * way / np.hypot(*way)
+        chart.pin([row.row], x=to[0], y=to[1])
+        after = chart.layout(on_frame=frames.append)
+        if set(chart.result.phases) != {"reflow"}:
+            continue
+        answered += 1
+        assert chart.result.iterations <= 100 and len(frames) >= 1
+        moved = np.hypot(after.x - before.x, after.y - before.y).to_numpy()
+        far = np.hypot(before.x - to[0], before.y - to[1]).to_numpy() > 5 * r
+        assert np.median(moved[far]) < 0.1 * r and (moved > 0.1 * r).mean() < 0.2, k
+        held = after.set_index("row").loc[row.row]
+        assert np.hypot(held.x - to[0], held.y - to[1]) < 1e-3
+        assert overlap(after) < 0.01 and chart.result.stats["overlap"] < 0.005, k
+        assert after.width.to_numpy() == pytest.approx(before.width.to_numpy()), "the scale kept"
+    assert answered >= 8, f"the reflow answered {answered} of 10 pins"
 
 
 def test_added_rows_reflow_around_them(chart, base):
