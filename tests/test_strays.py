@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import pytest
 import torch
 
 import unitopia_widget as uw
@@ -12,10 +13,9 @@ from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.rules import strays
 
 
-def problem(center):
+def problem(center, container=uw.Container.ellipse(200, 150, 120, 90), margin=0.0):
     chart = uw.Chart(pd.DataFrame({"v": [1.0] * len(center)}), mark="circle", size="v",
-                     canvas=(400, 300), container=uw.Container.ellipse(200, 150, 120, 90),
-                     boundary="closed")
+                     canvas=(400, 300), container=container, boundary="closed", margin=margin)
     p = engine.build_problem(bind(chart.df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
     with torch.no_grad():
         p.placement.t[:] = torch.tensor(center, dtype=torch.float32)
@@ -84,3 +84,24 @@ def test_a_mark_left_deep_in_another_moves_to_the_nearest_free_spot_and_one_touc
     assert (after[:2] != center[:2]).any(axis=1).sum() == 1            # one of the two moves
     gap = np.hypot(*(after[0] - after[1]))
     assert 19.5 <= gap < 23                                            # to the nearest free spot
+
+
+
+@pytest.mark.parametrize("inside, lands", [
+    # its footprint clear of theirs (centres 40 px apart): right of the one at 200, not
+    # between the two
+    ([140.0, 200.0], (239.5, 246.0)),
+    # no spot clears their footprints: its ink clear of them (centres 30 px apart), by the
+    # band's left end
+    ([145.0, 205.0, 265.0], (109.5, 116.0)),
+])
+def test_a_mark_whose_margins_fit_nowhere_comes_in_giving_up_the_margins_first(inside, lands):
+    # a band 26 px high (x 100..300): circles 10 px in radius fit, their footprints (margin 1:
+    # 20 px in radius) nowhere. Some sit inside it; the last is outside, left of the band.
+    band = uw.Container.rect(100, 137, 200, 26)
+    center = np.array([[x, 150.0] for x in inside] + [[40.0, 150.0]])
+    p, scale = problem(center, band, margin=1.0)
+    after = center + strays.bring_back(p, p.placement, scale, strays.StraysSettings(reach=0.6))
+    assert np.array_equal(after[:-1], center[:-1])
+    x, y = after[-1]
+    assert lands[0] <= x < lands[1] and abs(y - 150) <= 3               # its ink inside, nearest
