@@ -86,7 +86,6 @@ def test_a_mark_left_deep_in_another_moves_to_the_nearest_free_spot_and_one_touc
     assert 19.5 <= gap < 23                                            # to the nearest free spot
 
 
-
 @pytest.mark.parametrize("inside, lands", [
     # its footprint clear of theirs (centres 40 px apart): right of the one at 200, not
     # between the two
