@@ -26,7 +26,7 @@ import numpy as np
 import torch
 
 from ...design.encodings import footprint
-from ..step.fine import draw, samples
+from ..step.fine import draw, drawn_runs, samples
 from .state import Rule, shift, unbound
 
 
@@ -156,15 +156,9 @@ def ink_pixels(p, grid, center: torch.Tensor, angle: torch.Tensor, unit_scale: n
                rotating: np.ndarray):
     """A function of unit ``i`` to its ink's flat px ``(P,)`` long on ``grid`` (the fine
     raster's), each mark drawn at ``center (N, 2)``, ``angle (N,)`` and ``unit_scale (N,)``
-    without its margin, cut at alpha 0.5 as ``step.fine.draw`` cuts the footprints."""
-    values, index, owner = samples(p, grid, center, angle, p.half_w * unit_scale,
-                                   p.half_h * unit_scale, rotating)
-    drawn = values > 0.5
-    index, owner = index[drawn].long(), owner[drawn]
-    order = torch.argsort(owner, stable=True)
-    index = index[order]
-    bounds = np.concatenate([[0], np.cumsum(
-        torch.bincount(owner, minlength=len(p.layer)).cpu().numpy())])
+    without its margin, cut as ``step.fine.draw`` cuts the footprints."""
+    index, _, bounds = drawn_runs(p, grid, center, angle, p.half_w * unit_scale,
+                                  p.half_h * unit_scale, rotating)
     return lambda i: index[bounds[i]:bounds[i + 1]]
 
 

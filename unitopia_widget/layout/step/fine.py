@@ -76,6 +76,21 @@ def samples(p, grid: RasterGrid, center: torch.Tensor, angle: torch.Tensor,
     return render_samples(center, angle, as_t(half_w), as_t(half_h), plan, p.pyramids, grid)
 
 
+def drawn_runs(p, grid: RasterGrid, center: torch.Tensor, angle: torch.Tensor,
+               half_w: np.ndarray, half_h: np.ndarray, rotating: np.ndarray):
+    """``(index, owner, bounds)``: the flat px of ``grid`` each mark covers at alpha over
+    0.5, drawn as ``samples`` draws them; ``index``, ``owner`` ``(M,)`` long, each unit's in
+    one run: unit i's are ``index[bounds[i]:bounds[i + 1]]`` (``bounds (N + 1,)``)."""
+    values, index, owner = samples(p, grid, center, angle, half_w, half_h, rotating)
+    drawn = values > 0.5
+    index, owner = index[drawn].long(), owner[drawn]
+    order = torch.argsort(owner, stable=True)
+    index, owner = index[order], owner[order]
+    bounds = np.concatenate([[0], np.cumsum(
+        torch.bincount(owner, minlength=len(p.layer)).cpu().numpy())])
+    return index, owner, bounds
+
+
 @torch.no_grad()
 def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
          rotating: np.ndarray, fine_rho: float, max_fine: int) -> FineRaster:
@@ -84,24 +99,19 @@ def draw(p, center: torch.Tensor, angle: torch.Tensor, unit_scale: np.ndarray,
     (coarser where all layers' slabs would pass ``max_fine`` px, never coarser than the
     layout's); ``rotating (N,)``: units whose patch must hold any rotation."""
     w, h = p.grid.canvas
-    n, n_layers = len(p.layer), int(p.terms.blocks.shape[0])
+    n_layers = int(p.terms.blocks.shape[0])
     rho = max(p.grid.rho, min(fine_rho, math.sqrt(max_fine / (w * h * n_layers))))
     grid = RasterGrid((w, h), rho, pad=2)
     dev = center.device
     grow = footprint(p.margin) * unit_scale
-    values, index, owner = samples(p, grid, center, angle, p.half_w * grow, p.half_h * grow,
-                                   rotating)
-    drawn = values > 0.5
-    index, owner = index[drawn].long(), owner[drawn]
+    index, owner, bounds = drawn_runs(p, grid, center, angle, p.half_w * grow,
+                                      p.half_h * grow, rotating)
     size = grid.shape[0] * grid.shape[1]
     layer = torch.as_tensor(p.layer, device=dev, dtype=torch.long)
     collide = _collisions(p.terms, n_layers).to(dev)
     count = torch.zeros(n_layers * size, device=dev).index_add_(
         0, layer[owner] * size + index, torch.ones_like(index, dtype=torch.float32))
     seen = collide @ count.reshape(n_layers, size)
-    order = torch.argsort(owner, stable=True)
-    index, owner = index[order], owner[order]
-    bounds = np.concatenate([[0], np.cumsum(torch.bincount(owner, minlength=n).cpu().numpy())])
     return FineRaster(grid, index, owner, bounds, layer, collide, seen, _inside(p.regions, grid, dev))
 
 
