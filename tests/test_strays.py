@@ -11,6 +11,7 @@ import unitopia_widget as uw
 from unitopia_widget.layout import engine
 from unitopia_widget.layout.prepare.bind import bind
 from unitopia_widget.layout.rules import strays
+from unitopia_widget.layout.rules.state import shift
 
 
 def problem(center, container=uw.Container.ellipse(200, 150, 120, 90), margin=0.0):
@@ -104,3 +105,30 @@ def test_a_mark_whose_margins_fit_nowhere_comes_in_giving_up_the_margins_first(i
     assert np.array_equal(after[:-1], center[:-1])
     x, y = after[-1]
     assert lands[0] <= x < lands[1] and abs(y - 150) <= 3               # its ink inside, nearest
+
+
+def test_a_mark_of_a_band_left_outside_comes_back_along_its_curves_normal():
+    # a curve emitter in band mode along a box's middle (y 150): marks keep their order along
+    # the curve and stack along its normal. One ended above the box: it comes back straight
+    # down its normal, its place along the curve (x) kept, and on no other mark; the rest stay
+    df = pd.DataFrame({"v": [1.0] * 5, "when": range(5)})
+    chart = uw.Chart(df, mark="circle", size="v", order="when", canvas=(400, 300),
+                     container=uw.Container.rect(50, 120, 300, 60), boundary="closed",
+                     emitter=uw.CurveEmitter([[60, 150], [160, 150], [240, 150], [340, 150]],
+                                             mode="band"))
+    p = engine.build_problem(bind(chart.df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
+    track = p.placement.tracks[0]
+    with torch.no_grad():
+        track.u[:] = torch.tensor([40.0, 90.0, 140.0, 190.0, 240.0])
+        track.v[:] = torch.tensor([0.0, 0.0, -60.0, 0.0, 0.0])          # the third 60 px up
+    before = p.placement.transforms()[0].detach().numpy().copy()
+    scale = np.full(5, 10 / p.half_w[0])                                # circles 10 px in radius
+    move = strays.bring_back(p, p.placement, scale)
+    assert shift(p.placement, move)
+    after = p.placement.transforms()[0].detach().numpy()
+    lone = int(track.index[2])
+    assert np.allclose(np.delete(after, lone, 0), np.delete(before, lone, 0))
+    x, y = after[lone]
+    assert x == pytest.approx(before[lone, 0], abs=1e-3)               # along the curve: kept
+    assert 130 <= y <= 140                                              # wholly inside, nearest
+    assert float(track.u.detach()[2]) == pytest.approx(140.0)

@@ -62,6 +62,20 @@ class CurveTrack:
     def parameters(self) -> list[torch.Tensor]:
         return [p for p in (self.u, self.v) if p.requires_grad]
 
+    def sideways(self) -> torch.Tensor | None:
+        """``(n, 2)`` each unit's unit normal to the curve where it is: the one way a move made
+        by hand may carry a unit of a band, keeping its place along the curve (its emission
+        order); None where the track holds its units on the curve ("line") or still."""
+        if not self.v.requires_grad:
+            return None
+        return normals(self.curve.torch_at(self.u.detach())[1])
+
+    @torch.no_grad()
+    def step_aside(self, move: torch.Tensor) -> None:
+        """Move each unit by the part of ``move (n, 2)`` canvas px along its ``sideways``
+        normal (band mode)."""
+        self.v += (move * self.sideways()).sum(1)
+
     def positions(self):
         """Centres ``(n, 2)`` and unit tangents ``(n, 2)``."""
         point, tangent = self.curve.torch_at(self.u)

@@ -1,6 +1,6 @@
 """What the rules share: the solver's ``State``, the ``Rule`` they are made from, the step
 sizes and cadence the solver and the rules both read (``Steps``), and the bookkeeping of a
-move made by hand (``movable``, ``unbound``, ``forget``, ``shift``) and each unit's overlap at the samples
+move made by hand (``movable``, ``unbound``, ``sideways``, ``forget``, ``shift``) and each unit's overlap at the samples
 (``unit_overlap``)."""
 from __future__ import annotations
 
@@ -122,13 +122,32 @@ def unbound(p, place: Placement) -> np.ndarray:
     return free
 
 
+def sideways(p, place: Placement) -> np.ndarray:
+    """``(N, 2)``: for each unit of a band of ``place`` (a curve emitter's "band" mode) that no
+    ``x=``/``y=`` position binds, the unit normal to its curve where it is, the one way a
+    finish rule may move it (``CurveTrack.sideways``); 0 for every other unit."""
+    out = np.zeros((len(p.layer), 2))
+    for track in place.tracks:
+        normal = track.sideways()
+        if normal is not None:
+            out[track.index.cpu().numpy()] = normal.cpu().numpy()
+    if p.anchor is not None:
+        out[(p.anchor.mask.cpu().numpy() > 0).any(1)] = 0.0
+    return out
+
+
 def shift(place: Placement, move: np.ndarray) -> bool:
     """Move the units of ``place`` by ``move (N, 2)`` canvas px after the last iteration (a
-    finish rule's move: no optimizer step follows); whether any moved."""
+    finish rule's move: no optimizer step follows); a unit of a band by the part of its move
+    along the curve's normal (``sideways``). Whether any moved."""
     if not move.any():
         return False
     with torch.no_grad():
-        place.t += torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+        by = torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+        for track in place.tracks:
+            if track.sideways() is not None:
+                track.step_aside(by[track.index])
+        place.t += by
     return True
 
 
