@@ -132,3 +132,35 @@ def test_a_mark_of_a_band_left_outside_comes_back_along_its_curves_normal():
     assert x == pytest.approx(before[lone, 0], abs=1e-3)               # along the curve: kept
     assert 130 <= y <= 140                                              # wholly inside, nearest
     assert float(track.u.detach()[2]) == pytest.approx(140.0)
+
+
+def test_marks_too_faint_for_the_layouts_raster_are_still_seen_on_top_of_each_other():
+    # circles 1 px in radius on a raster of 4 canvas px a pixel: no footprint reaches half a
+    # pixel's alpha, so two stacked read as no overlap there (the loss counts alpha past 1).
+    # Read on the fine raster, the upper one moves to the nearest free spot beside the other
+    center = np.array([[200.0, 150.0], [200.3, 150.2], [240.0, 150.0]])
+    p, _ = problem(center)
+    scale = np.full(3, 1 / p.half_w[0])
+    assert p.grid.rho == 0.25
+    at, angle = (t.detach() for t in p.placement.transforms())
+    feet = strays.samples(p, p.grid, at, angle, p.half_w * scale, p.half_h * scale,
+                          p.placement.rotating())
+    assert not strays.overlapped(p, feet).any() and strays.faint(feet, 3)[:2].all()
+    after = center + strays.bring_back(p, p.placement, scale)
+    assert np.array_equal(after[[0, 2]], center[[0, 2]])
+    assert 1.0 <= np.hypot(*(after[1] - center[1])) <= 3.0             # beside it, nearest
+
+
+def test_a_mark_too_faint_for_the_layouts_raster_is_still_seen_outside():
+    # a circle 1 px in radius whose ink lies left of a box's wall (x 81): the layout's raster
+    # (4 canvas px a pixel) reads its centre inside and none of its ink out; read on the
+    # fine raster, it moves in to the nearest spot, its ink wholly inside
+    center = np.array([[200.0, 150.0], [80.0, 150.0]])
+    p, _ = problem(center, uw.Container.rect(81, 60, 240, 180))
+    scale = np.full(2, 1 / p.half_w[0])
+    at, angle = (t.detach() for t in p.placement.transforms())
+    assert not strays.outside(p, center, np.arange(2)).any()
+    assert strays.ink_outside(p, at, angle, scale, p.placement.rotating())[1] < 0.05
+    after = center + strays.bring_back(p, p.placement, scale)
+    assert np.array_equal(after[0], center[0])
+    assert 82.0 <= after[1, 0] <= 83.0 and after[1, 1] == 150.0

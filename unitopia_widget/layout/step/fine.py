@@ -45,6 +45,14 @@ class FineRaster:
         a = int(self.layer[i])
         self.seen[:, self.pixels(i)] += self.collide[:, a:a + 1]
 
+    def crowded(self) -> np.ndarray:
+        """``(N,)`` the share of each unit's pixels that another footprint it collides with
+        covers too."""
+        n = len(self.bounds) - 1
+        shared = (self.seen[self.layer[self.owner], self.index] > 1.5).float()
+        hit = torch.zeros(n, device=shared.device).index_add_(0, self.owner, shared)
+        return (hit / torch.bincount(self.owner, minlength=n).clamp_min(1)).cpu().numpy()
+
     def move_lifted(self, i: int, row: int, column: int) -> None:
         """Move lifted unit ``i``'s pixels by ``row``, ``column`` fine px on ``index`` alone
         (``put`` puts them back on ``seen`` where they then are)."""
