@@ -1,6 +1,6 @@
 """What the rules share: the solver's ``State``, the ``Rule`` they are made from, the step
 sizes and cadence the solver and the rules both read (``Steps``), and the bookkeeping of a
-move made by hand (``movable``, ``unbound``, ``sideways``, ``forget``, ``shift``) and each unit's overlap at the samples
+move made by hand (``movable``, ``bound``, ``unbound``, ``sideways``, ``forget``, ``shift``) and each unit's overlap at the samples
 (``unit_overlap``)."""
 from __future__ import annotations
 
@@ -113,13 +113,18 @@ def movable(place: Placement) -> np.ndarray:
     return free
 
 
+def bound(p) -> np.ndarray:
+    """Bool ``(N,)``: the units an ``x=``/``y=`` position binds (``p.anchor``, of the solver's
+    Problem ``p``)."""
+    if p.anchor is None:
+        return np.zeros(len(p.layer), bool)
+    return (p.anchor.mask.cpu().numpy() > 0).any(1)
+
+
 def unbound(p, place: Placement) -> np.ndarray:
     """Bool ``(N,)``: the ``movable`` units of ``place`` that no ``x=``/``y=`` position binds
-    (``p.anchor``, of the solver's Problem ``p``): a finish rule may move them anywhere."""
-    free = movable(place)
-    if p.anchor is not None:
-        free &= ~(p.anchor.mask.cpu().numpy() > 0).any(1)
-    return free
+    (``bound``): a finish rule may move them anywhere."""
+    return movable(place) & ~bound(p)
 
 
 def sideways(p, place: Placement) -> np.ndarray:
@@ -131,8 +136,7 @@ def sideways(p, place: Placement) -> np.ndarray:
         normal = track.sideways()
         if normal is not None:
             out[track.index.cpu().numpy()] = normal.cpu().numpy()
-    if p.anchor is not None:
-        out[(p.anchor.mask.cpu().numpy() > 0).any(1)] = 0.0
+    out[bound(p)] = 0.0
     return out
 
 
@@ -143,10 +147,11 @@ def shift(place: Placement, move: np.ndarray) -> bool:
     if not move.any():
         return False
     with torch.no_grad():
-        by = torch.as_tensor(move, dtype=place.t.dtype, device=place.t.device)
+        by = torch.tensor(move, dtype=place.t.dtype, device=place.t.device)   # a copy: rows cleared below
         for track in place.tracks:
             if track.sideways() is not None:
                 track.step_aside(by[track.index])
+            by[track.index] = 0.0   # its centre is where its track puts it, not ``t``
         place.t += by
     return True
 
