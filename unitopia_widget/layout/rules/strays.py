@@ -161,11 +161,20 @@ def nearest_spot(checks: list, shape: tuple, offsets: np.ndarray, chunk: int,
     """The first of ``offsets`` ``(K, 2)`` (row, column) that puts, for each ``(allowed (S,)
     bool, pix (P,) long)`` of ``checks``, every one of the flat pixels ``pix`` on an
     ``allowed`` pixel of a raster of ``shape`` (rows, columns); None where no offset does.
-    Each offset is tried on ``probe`` pixels spread over each ``pix`` first, and on all of
-    them only where those pass."""
+    Offsets that take a set's bounding box off the raster are dropped first; each other is
+    tried on ``probe`` pixels spread over each ``pix`` first, and on all of them only where
+    those pass."""
     rows, cols = shape
     device = checks[0][1].device
     offsets = torch.as_tensor(offsets, device=device)
+    on = torch.ones(len(offsets), dtype=torch.bool, device=device)
+    for _, pix in checks:
+        if len(pix):
+            r, c = pix // cols, pix % cols
+            on &= (offsets[:, 0] >= -r.min()) & (offsets[:, 0] < rows - r.max()) \
+                & (offsets[:, 1] >= -c.min()) & (offsets[:, 1] < cols - c.max())
+    offsets = offsets[on]
+    shift = offsets[:, 0] * cols + offsets[:, 1]   # (K,) each offset in flat px
     few = [pix[torch.linspace(0, len(pix) - 1, min(probe, len(pix)), device=device).long()]
            for _, pix in checks]
     every = [pix for _, pix in checks]
@@ -173,21 +182,21 @@ def nearest_spot(checks: list, shape: tuple, offsets: np.ndarray, chunk: int,
     def clear(part, sets):   # (d,) bool: every pixel of each set moved by each offset allowed
         ok = torch.ones(len(part), dtype=torch.bool, device=device)
         for (allowed, _), pix in zip(checks, sets):
-            rr, cc = (pix // cols)[None] + part[:, :1], (pix % cols)[None] + part[:, 1:]   # (d, P)
-            on = ((rr >= 0) & (rr < rows) & (cc >= 0) & (cc < cols)).all(1)
-            ok &= on & allowed[rr.clamp(0, rows - 1) * cols + cc.clamp(0, cols - 1)].all(1)
+            ok &= allowed[pix[None] + shift[part][:, None]].all(1)
         return ok
 
     n_few, n_all = sum(len(f) for f in few), sum(len(p) for p in every)
+    order = torch.arange(len(offsets), device=device)
     done, size = 0, 256   # the nearest offsets first, in runs that double
     while done < len(offsets):
-        part = offsets[done:done + size]
-        done, size = done + len(part), min(2 * size, max(1, chunk // n_few))
+        part = order[done:done + size]
+        done, size = done + len(part), min(2 * size, max(1, chunk // max(n_few, 1)))
         part = part[clear(part, few)]
-        for sub in torch.split(part, max(1, min(size, chunk // n_all))):
+        for sub in torch.split(part, max(1, min(size, chunk // max(n_all, 1)))):
             ok = torch.nonzero(clear(sub, every)).reshape(-1)
             if len(ok):
-                return int(sub[ok[0], 0]), int(sub[ok[0], 1])
+                row, column = offsets[sub[ok[0]]].tolist()
+                return int(row), int(column)
     return None
 
 
