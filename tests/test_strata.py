@@ -93,6 +93,18 @@ def test_the_radial_shadow_fills_the_room_between_the_ink_and_the_point():
     assert agree[(cone.reshape(h, w) < -1) | (cone.reshape(h, w) > 1)].mean() > 0.99
 
 
+def test_the_radial_sweep_back_covers_what_lies_beyond_the_ink_from_the_point():
+    # the same blob, swept out from the point (``out``): the ink's shadow cast away from it
+    h, w = 60, 80
+    ink = torch.zeros(h, w)
+    yy, xx = torch.meshgrid(torch.arange(h) + 0.5, torch.arange(w) + 0.5, indexing="ij")
+    ink[(xx - 60) ** 2 + (yy - 30) ** 2 <= 36] = 1.0
+    back = Radial(((20.0, 30.0, 1.0),)).on((h, w), rho=1.0, pad=0, device="cpu")(ink, out=True)
+    assert back[30, 75] > 0.9 and back[30, 62] > 0.9              # the ink and beyond it
+    assert back[30, 40] < 0.1 and back[30, 5] < 0.1               # between it and the point
+    assert back[5, 75] < 0.1 and back[55, 75] < 0.1               # off its angle
+
+
 def test_several_point_piles_each_ring_their_own_point():
     # three piles apart, three layers each blocking on the one before: each point its own rings
     points = [(70.0, 100.0), (200.0, 100.0), (330.0, 100.0)]

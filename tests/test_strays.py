@@ -76,6 +76,38 @@ def test_a_mark_of_a_layer_resting_on_another_is_not_moved_into_that_layers_shad
     assert 20 <= x and y <= 180                                        # in, above the row
 
 
+@pytest.mark.parametrize("gap", [True, False])
+def test_a_jammed_mark_of_a_layer_others_rest_on_is_moved_beyond_them_only_when_nothing_nearer_is_free(gap):
+    # under a pull down, a row of circles on the floor (layer 0), an extra circle of it
+    # jammed into the row, and a row of the layer resting on it (layer 1) just above: the
+    # nearest free spot is on top of layer 1's row, which would set it beyond the layer that
+    # rests on it. With a gap in its own row, one of the pair goes there; without, on top
+    x = 20.0 + 20 * np.arange(19)
+    row = np.delete(x, 4) if gap else x                                # the gap at x 100
+    df = pd.DataFrame({"k": [0] * (len(row) + 1) + [1] * 19, "v": 1.0})
+    chart = uw.Chart(df, mark="circle", size="v", by="k", canvas=(400, 300), boundary="open",
+                     container=uw.Container.rect(10, 10, 380, 265),
+                     forces=[uw.DirectionalForce(90)])
+    chart.layer("1").set(blocks=["0"])
+    p = engine.build_problem(bind(chart.df, chart.layers), chart.layers, chart.canvas, 0, "cpu")
+    floor, top = np.flatnonzero(p.layer == 0), np.flatnonzero(p.layer == 1)
+    center = np.zeros((len(df), 2))
+    center[floor[:-1]] = np.stack([row, np.full(len(row), 263.0)], 1)
+    center[floor[-1]] = (200.0, 258.0)                                  # jammed into the row
+    center[top] = np.stack([x, np.full(19, 231.0)], 1)       # 12 px above the floor's row
+    with torch.no_grad():
+        p.placement.t[:] = torch.tensor(center, dtype=torch.float32)
+    scale = np.full(len(df), 10 / p.half_w[0])                         # circles 10 px in radius
+    move = strays.bring_back(p, p.placement, scale)
+    moved = np.flatnonzero(np.abs(move).sum(1))
+    assert len(moved) == 1 and p.layer[moved[0]] == 0   # one of the pair: the other is then free
+    x, y = center[moved[0]] + move[moved[0]]
+    if gap:
+        assert abs(x - 100) < 5 and y > 250                            # in the gap, not on top
+    else:
+        assert y < 221                                                 # on top: the one free spot
+
+
 def test_a_mark_left_deep_in_another_moves_to_the_nearest_free_spot_and_one_touching_stays():
     # two circles 10 px in radius half on top of each other, and a pair barely touching
     center = np.array([[150.0, 150.0], [160.0, 150.0], [250.0, 150.0], [269.5, 150.0]])

@@ -176,8 +176,10 @@ class RadialShadow:
         self.to_pixels = torch.stack([x, row / max(total - 1, 1) * 2 - 1], -1)[None] \
             .float().to(device)                                               # (1, H, W, 2)
 
-    def __call__(self, ink: torch.Tensor, at: torch.Tensor | None = None) -> torch.Tensor:
-        """``ink (H, W)`` swept in to the points: ``(H, W)``, or ``(k,)`` at the flat
+    def __call__(self, ink: torch.Tensor, at: torch.Tensor | None = None,
+                 out: bool = False) -> torch.Tensor:
+        """``ink (H, W)`` swept in to the points (``out``: out from them, each pixel holding
+        the ink at its angle at its radius and nearer): ``(H, W)``, or ``(k,)`` at the flat
         pixel indices ``at (k,)`` long."""
         key = (ink.dtype, ink.device)
         if key not in self._rays:
@@ -187,7 +189,8 @@ class RadialShadow:
                                 padding_mode="zeros", align_corners=True)
         rays.index_copy_(0, self.kept, on_kept.reshape(-1))
         # in to the point: the rays run from their far end, so a plain scan, then turned back
-        swept = accumulate(rays.view(1, 1, -1, self.n_r), -1).flip(-1)
+        rays = rays.view(1, 1, -1, self.n_r)
+        swept = accumulate(rays.flip(-1), -1) if out else accumulate(rays, -1).flip(-1)
         grid = self.to_pixels if at is None else self.to_pixels.view(-1, 2).index_select(0, at)[None, None]
         back = F.grid_sample(swept, grid.to(ink.dtype), mode="bilinear", padding_mode="border",
                              align_corners=True)
@@ -205,12 +208,15 @@ class RadialShadow:
             (obstacle.index_add_ if add else obstacle.index_copy_)(0, mine, swept)
 
 
-def swept_along(sweep, ink: torch.Tensor) -> torch.Tensor:
+def swept_along(sweep, ink: torch.Tensor, back: bool = False) -> torch.Tensor:
     """``ink (..., H, W)`` swept along ``sweep``: a raster axis ``(dim, reverse)`` (``shadow``)
-    or a ``RadialShadow`` (made for one ``(H, W)`` slab: each slab in turn)."""
+    or a ``RadialShadow`` (made for one ``(H, W)`` slab: each slab in turn); ``back``: against
+    it (up the axis, out from the points), over what lies beyond the ink."""
     if isinstance(sweep, RadialShadow):
-        return torch.stack([sweep(one) for one in ink.reshape(-1, *sweep.shape)]).view(ink.shape)
-    return shadow(ink, *sweep)
+        return torch.stack([sweep(one, out=back) for one in ink.reshape(-1, *sweep.shape)]) \
+            .view(ink.shape)
+    dim, reverse = sweep
+    return shadow(ink, dim, reverse != back)
 
 
 def shadow_distance(xy: np.ndarray, sweep, centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
