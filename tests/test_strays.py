@@ -77,7 +77,7 @@ def test_a_mark_of_a_layer_resting_on_another_is_not_moved_into_that_layers_shad
 
 
 @pytest.mark.parametrize("gap", [True, False])
-def test_a_jammed_mark_of_a_layer_others_rest_on_is_moved_beyond_them_only_when_nothing_nearer_is_free(gap):
+def test_a_jammed_bottom_mark_goes_beyond_the_strata_on_it_only_where_nothing_nearer_is_free(gap):
     # under a pull down, a row of circles on the floor (layer 0), an extra circle of it
     # jammed into the row, and a row of the layer resting on it (layer 1) just above: the
     # nearest free spot is on top of layer 1's row, which would set it beyond the layer that
@@ -137,6 +137,19 @@ def test_a_mark_whose_margins_fit_nowhere_comes_in_giving_up_the_margins_first(i
     assert np.array_equal(after[:-1], center[:-1])
     x, y = after[-1]
     assert lands[0] <= x < lands[1] and abs(y - 150) <= 3               # its ink inside, nearest
+
+
+def test_a_mark_giving_its_margins_up_keeps_its_ink_a_fine_pixel_from_the_wall():
+    # two bands: the nearer (x 100..200) half a px taller than a circle 10 px in radius, the
+    # farther (x 220..320) 4 px taller; its footprint (margin 1) fits neither. Its ink would
+    # fit the nearer flush against both walls, where an exporter's drawing of the mark can
+    # differ from the engine's by a pixel: it goes to the farther, a fine px in from its end
+    c = uw.Container.path("M 100 140 H 200 V 160.5 H 100 Z M 220 138 H 320 V 162 H 220 Z")
+    center = np.array([[60.0, 150.0]])
+    p, scale = problem(center, c, margin=1.0)
+    dense = strays.StraysSettings(reach=0.45, spacing=0.01, across=100_000)   # every fine px
+    x, y = (center + strays.bring_back(p, p.placement, scale, dense))[0]
+    assert x == 230.5 and abs(y - 150) <= 1.5
 
 
 def test_a_mark_of_a_band_left_outside_comes_back_along_its_curves_normal():

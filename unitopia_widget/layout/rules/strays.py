@@ -16,10 +16,11 @@ moves to the nearest spot (on the fine raster of ``step.fine``) where its footpr
 inside, on no footprint it collides with and, in a layer resting on others, out of the shadow
 they cast; in a layer others rest on, a spot short of them (their ink swept back against
 their pull) is looked for first, so that a jammed mark of a lower stratum stays below the
-strata on it, and any spot only where none is. A mark with a margin whose footprint has no such spot (a closed fill at a wide
-margin, where the margins take all the room left) gives its margin up, the wall's share
-first: its ink wholly inside and its footprint on no other, else its ink wholly inside and
-on no footprint. A mark of a curve emitter's band is looked for a spot only along the curve's
+strata on it, and any spot only where none is. A mark with a margin whose footprint has no
+such spot (a closed fill at a wide margin, where the margins take all the room left) gives
+its margin up, the wall's share first: its ink wholly inside and its footprint on no other,
+else its ink wholly inside and on no footprint, the ink a fine px in from the wall either
+way (``inset``). A mark of a curve emitter's band is looked for a spot only along the curve's
 normal where it is (``state.sideways``), keeping its place along the curve and so the
 emission order. Where no spot is within reach, it stays.
 """
@@ -150,6 +151,19 @@ def strata_rooms(p, feet, fine) -> tuple[torch.Tensor, torch.Tensor] | None:
                  .reshape(len(x), -1) for x in (below, beyond))
 
 
+def inset(room: torch.Tensor, shape: tuple) -> torch.Tensor:
+    """``room (S,)`` bool on a raster of ``shape`` (rows, columns) less each pixel with a
+    4-neighbour outside it: ink that gives its margin up keeps a fine px from the wall, where
+    the engine's drawing of a mark and an exporter's may differ by one."""
+    r = room.view(shape)
+    out = r.clone()
+    out[1:] &= r[:-1]
+    out[:-1] &= r[1:]
+    out[:, 1:] &= r[:, :-1]
+    out[:, :-1] &= r[:, 1:]
+    return out.view(-1)
+
+
 def around(far: float, step: int) -> np.ndarray:
     """``(K, 2)`` (row, column) offsets on a grid ``step`` px apart out to ``far`` px, the
     nearest first."""
@@ -228,12 +242,13 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
     regions (``outside``) or more than ``poke`` of whose ink does (``ink_outside``), then
     those more than ``poke`` of whose footprint others overlap (``overlapped``; most first,
     each while it still is on the fine raster), the ink and the overlap of a ``faint`` unit
-    read on the fine raster too (``ink_off``, ``FineRaster.crowded``), to the
-    nearest free spot wholly inside and out of the shadow of the layers each rests on
-    (``strata_rooms``), first also short of the layers resting on it, looked for on a grid ``spacing`` footprint radii apart out to ``reach``
-    of the canvas diagonal; where a unit with a margin finds none, the nearest spot with its
-    ink inside and its footprint free, else with its ink inside and free. A unit of a band
-    (``sideways``) is looked for a spot only along its curve's normal (``along``)."""
+    read on the fine raster too (``ink_off``, ``FineRaster.crowded``), to the nearest free
+    spot wholly inside and out of the shadow of the layers each rests on (``strata_rooms``),
+    first also short of the layers resting on it, looked for on a grid ``spacing`` footprint
+    radii apart out to ``reach`` of the canvas diagonal; where a unit with a margin finds
+    none, the nearest spot with its ink inside (a fine px in from the wall) and its footprint
+    free, else with its ink inside and free. A unit of a band (``sideways``) is looked for a
+    spot only along its curve's normal (``along``)."""
     center, angle = place.transforms()
     xy = center.detach().cpu().numpy().astype(float)
     moved = np.zeros_like(xy)
@@ -296,7 +311,8 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
                 # own share of the gap to its neighbours given up too)
                 if ink is None:
                     ink = ink_pixels(p, fine.grid, center, angle, unit_scale, rotating)
-                for checks in ([(clear, pix), (room[lay], ink(i))], [(room[lay] & clear, ink(i))]):
+                inner = inset(room[lay], fine.grid.shape)
+                for checks in ([(clear, pix), (inner, ink(i))], [(inner & clear, ink(i))]):
                     best = nearest_spot(checks, (rows, cols), spots, c.chunk)
                     if best is not None:
                         break
@@ -325,7 +341,8 @@ class Strays(Rule):
     0.52 -> 0.10%. Where wide margins leave no such spot, the margin gives way before the
     ink: strands in a blob at margin 1.0 (m049) outside 0.22 -> 0% (each of seeds 0-4),
     snowflakes piled in a blob at margin 0.4 (m066) overlap 0.062 -> 0.024%, outside 0.11 ->
-    0.05%, snowflakes in a pen with holes at margin 0.7 (m029) outside 0.004 -> 0.001%. Marks
+    0.05%, snowflakes in a pen with holes at margin 0.7 (m029) outside 0.004 -> 0.001%; its
+    ink half a px in from the wall, PNG strata on a slope (seed 1, m069) 0.002 -> 0%. Marks
     of a curve emitter's band move along its normal: raindrops on a band in a thin V carried
     out by a point force (corpus seed 2, m083) outside 10.3 -> 0.02%, overlap 2.5 -> 0.06%;
     around lettering (seed 1, m103) outside 1.03 -> 0.05%. Marks too faint for the layout's
