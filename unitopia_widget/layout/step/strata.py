@@ -188,7 +188,8 @@ class RadialShadow:
         on_kept = F.grid_sample(ink[None, None], self.to_kept.to(ink.dtype), mode="bilinear",
                                 padding_mode="zeros", align_corners=True)
         rays.index_copy_(0, self.kept, on_kept.reshape(-1))
-        # in to the point: the rays run from their far end, so a plain scan, then turned back
+        # in to the point: the rays run from their far end, so a plain scan, then turned back;
+        # out from it: turned first
         rays = rays.view(1, 1, -1, self.n_r)
         swept = accumulate(rays.flip(-1), -1) if out else accumulate(rays, -1).flip(-1)
         grid = self.to_pixels if at is None else self.to_pixels.view(-1, 2).index_select(0, at)[None, None]
