@@ -73,8 +73,10 @@ class CurveTrack:
     @torch.no_grad()
     def step_aside(self, move: torch.Tensor) -> None:
         """Move each unit by the part of ``move (n, 2)`` canvas px along its ``sideways``
-        normal (band mode)."""
-        self.v += (move * self.sideways()).sum(1)
+        normal (band mode; a track with none keeps its units where they are)."""
+        normal = self.sideways()
+        if normal is not None:
+            self.v += (move * normal).sum(1)
 
     def positions(self):
         """Centres ``(n, 2)`` and unit tangents ``(n, 2)``."""

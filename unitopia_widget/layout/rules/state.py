@@ -149,8 +149,7 @@ def shift(place: Placement, move: np.ndarray) -> bool:
     with torch.no_grad():
         by = torch.tensor(move, dtype=place.t.dtype, device=place.t.device)   # a copy: rows cleared below
         for track in place.tracks:
-            if track.sideways() is not None:
-                track.step_aside(by[track.index])
+            track.step_aside(by[track.index])
             by[track.index] = 0.0   # its centre is where its track puts it, not ``t``
         place.t += by
     return True

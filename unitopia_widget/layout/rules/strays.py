@@ -287,6 +287,7 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
         below, beyond = strata
         rooms = [fine.inside & ~below & ~beyond, fine.inside & ~below]
         mirrored = beyond.any(1).cpu().numpy()
+    inner = {}   # (room, layer) -> the room less its rim (``inset``), made when first needed
     rows, cols = fine.grid.shape
     rho = fine.grid.rho
     far = c.reach * math.hypot(rows, cols)
@@ -303,7 +304,7 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
         spots = along(aside[i], far, step) if aside[i].any() else around(far, step)
         clear = fine.seen[lay] < 0.5
         best = None
-        for room in rooms[:1 + int(mirrored[lay])]:
+        for r, room in enumerate(rooms[:1 + int(mirrored[lay])]):
             best = nearest_spot([(room[lay] & clear, pix)], (rows, cols), spots, c.chunk)
             if best is None and p.margin[i] > 0:
                 # no room for its margins: its ink inside and its footprint on no other's
@@ -311,8 +312,10 @@ def bring_back(p, place, unit_scale: np.ndarray, c: StraysSettings = StraysSetti
                 # own share of the gap to its neighbours given up too)
                 if ink is None:
                     ink = ink_pixels(p, fine.grid, center, angle, unit_scale, rotating)
-                inner = inset(room[lay], fine.grid.shape)
-                for checks in ([(clear, pix), (inner, ink(i))], [(inner & clear, ink(i))]):
+                if (r, lay) not in inner:
+                    inner[r, lay] = inset(room[lay], fine.grid.shape)
+                core = inner[r, lay]
+                for checks in ([(clear, pix), (core, ink(i))], [(core & clear, ink(i))]):
                     best = nearest_spot(checks, (rows, cols), spots, c.chunk)
                     if best is not None:
                         break
