@@ -275,6 +275,7 @@ def test_a_resolved_legal_polish_decays_faster_and_any_other_at_the_plain_pace()
     optimizer = SimpleNamespace(param_groups=[{"lr": 1.0}])
     s = SimpleNamespace(polish_left=60, base_lrs=[1.0], optimizer=optimizer, steps=Steps(),
                         p=SimpleNamespace(resolved=True),
+                        ctl=SimpleNamespace(free=np.zeros(2, bool), bare=np.ones(2, bool)),
                         overlap_g=np.array([0.0005, 0.0]), outside_g=np.array([0.0, 0.0009]))
     Decay()(s)
     assert s.polish_left == 60 - pace
@@ -289,6 +290,34 @@ def test_a_resolved_legal_polish_decays_faster_and_any_other_at_the_plain_pace()
     s.overlap_g, s.outside_g, s.p.resolved = np.zeros(2), np.zeros(2), False
     Decay()(s)
     assert s.polish_left == 56 - pace
+
+
+def test_a_controlled_scale_of_bare_marks_is_legal_only_within_the_tighter_bound():
+    # a closed container's scale is the engine's to choose, and without margins the overlap
+    # the loss reads is ink: such a layout is legal at final_overlap_bare; an open pile's
+    # (its fill is the user's) and marks with margins (the overlap read is the bands') at
+    # final_overlap
+    from unitopia_widget.layout.rules.legalize import LegalizeSettings, over_bounds
+    c = LegalizeSettings()
+    assert c.final_overlap_bare < c.final_overlap
+    between = (c.final_overlap_bare + c.final_overlap) / 2
+    s = SimpleNamespace(ctl=SimpleNamespace(free=np.array([True, False, True, True]),
+                                            bare=np.array([True, True, False, True])),
+                        overlap_g=np.array([between, between, between, 0.5 * c.final_overlap_bare]),
+                        outside_g=np.zeros(4))
+    assert over_bounds(s, c).tolist() == [True, False, False, False]
+
+
+def test_a_closed_fill_of_spread_circles_ends_within_the_bare_bound():
+    # 80 lognormal circles fill a disc; the settle hands the polish a jammed layout and the
+    # legalising rounds shrink it: at final_overlap it ended at 0.07-0.09% of the
+    # ink overlapped (the checker's SVG reading of the designs' bubbles: 0.06-0.11%)
+    from unitopia_widget.layout.rules.legalize import LegalizeSettings
+    c = chart(80, values=np.random.default_rng(2).lognormal(0, 1, 80), iterations=600)
+    overlap, outside, density = circle_quality(c.layout())
+    assert c.result.stats["overlap"] <= LegalizeSettings().final_overlap_bare
+    assert c.result.iterations < 600                  # legal before the budget ran out
+    assert overlap < 0.002 and outside < 0.005 and density > 0.6
 
 
 @pytest.mark.parametrize("mark, resolved", [

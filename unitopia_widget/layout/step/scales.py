@@ -17,6 +17,9 @@ class Scales:
         self.log = np.log(np.asarray(start, dtype=float))
         self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
         self.unit_group = self.group[p.layer]
+        #: (G,) groups whose units' median margin is 0: the overlap the loss reads is their ink's
+        self.bare = np.array([np.median(p.margin[self.unit_group == g]) == 0.0
+                              if (self.unit_group == g).any() else False for g in range(self.count)])
 
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
