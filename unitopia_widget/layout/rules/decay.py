@@ -18,7 +18,7 @@ class Decay(Rule):
     (``Steps.polish_iterations``), so the last overlaps go without new ones made (every
     design). Where the raster resolves every contact (``Problem.resolved``: solid marks
     wide on it) and the layout is already legal (every scale group's overlap and outside
-    within ``legalize``'s ``final_overlap`` and ``final_outside``), a step counts for
+    within ``legalize``'s bounds, ``over_bounds``), a step counts for
     ``legal_pace`` iterations: the steps still decay to nothing, in fewer iterations where
     nothing is left to clear (Table 1 at 1,000 equal discs: 96 -> 58 iterations, overlap
     0.013 -> 0.028%; the corpus's resolved designs within their noise over seeds 0-4).
