@@ -5,6 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..step.scales import group_median
 from .state import Rule
 
 
@@ -23,8 +24,7 @@ def grow_outside(margin: np.ndarray, unit_group: np.ndarray, count: int,
                  c: FillScaleSettings = FillScaleSettings()) -> np.ndarray:
     """``(G,)`` the outside share below which room still grows each group's scale, from the
     median margin ``margin (N,)`` of its units (``unit_group (N,)``)."""
-    median = np.array([np.median(margin[unit_group == g]) if (unit_group == g).any()
-                       else 0.0 for g in range(count)])
+    median = group_median(margin, unit_group, count)
     return c.grow_overlap * np.minimum(c.outside_bare + c.outside_per_margin * median, 1.0)
 
 

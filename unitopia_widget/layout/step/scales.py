@@ -18,8 +18,7 @@ class Scales:
         self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
         self.unit_group = self.group[p.layer]
         #: (G,) groups whose units' median margin is 0: the overlap the loss reads is their ink's
-        self.bare = np.array([np.median(p.margin[self.unit_group == g]) == 0.0
-                              if (self.unit_group == g).any() else False for g in range(self.count)])
+        self.bare = group_median(p.margin, self.unit_group, self.count) == 0.0
 
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
@@ -31,3 +30,10 @@ class Scales:
         np.add.at(per.T, self.group, sums.T)
         drawn = np.maximum(per[2], 1e-6)
         return per[0] / drawn, per[1] / drawn
+
+
+def group_median(values: np.ndarray, unit_group: np.ndarray, count: int) -> np.ndarray:
+    """``(G,)`` the median of ``values (N,)`` over each group's units (``unit_group (N,)``),
+    0 for a group without units."""
+    return np.array([np.median(values[unit_group == g]) if (unit_group == g).any() else 0.0
+                     for g in range(count)])
