@@ -18,6 +18,7 @@ from unitopia_widget.layout.rules.fill_scale import grow_outside
 from unitopia_widget.layout.rules.exchange import capsules, trades, unit_outside
 from unitopia_widget.layout.rules.rest import Rest
 from unitopia_widget.layout.rules.start_polish import StartPolish
+from unitopia_widget.layout.step.scales import group_median
 from unitopia_widget.layout.prepare import assemble
 from unitopia_widget.layout.prepare.problem import Problem
 from unitopia_widget.layout.solver import Result, solve
@@ -249,7 +250,7 @@ def test_room_lets_margins_poke_out_before_the_scale_stops_growing():
     # a margin band pressed on the edge pokes out before the ink: snowflakes (margin 0.1)
     # stopped growing at 0.5% of footprint outside, 0.00% of ink, 8.6% empty (4.1% now)
     margin, unit_group = np.array([0.0, 0.0, 0.1, 0.1]), np.array([0, 0, 1, 1])
-    np.testing.assert_allclose(grow_outside(margin, unit_group, 2), [0.004, 0.01])
+    np.testing.assert_allclose(grow_outside(group_median(margin, unit_group, 2)), [0.004, 0.01])
 
 
 @pytest.mark.parametrize("sign", [1.0, -1.0])

@@ -5,7 +5,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..step.scales import group_median
 from .state import Rule
 
 
@@ -20,11 +19,9 @@ class FillScaleSettings:
     outside_per_margin: float = 6.0
 
 
-def grow_outside(margin: np.ndarray, unit_group: np.ndarray, count: int,
-                 c: FillScaleSettings = FillScaleSettings()) -> np.ndarray:
+def grow_outside(median: np.ndarray, c: FillScaleSettings = FillScaleSettings()) -> np.ndarray:
     """``(G,)`` the outside share below which room still grows each group's scale, from the
-    median margin ``margin (N,)`` of its units (``unit_group (N,)``)."""
-    median = group_median(margin, unit_group, count)
+    median margin ``median (G,)`` of its units (``Scales.margin``)."""
     return c.grow_overlap * np.minimum(c.outside_bare + c.outside_per_margin * median, 1.0)
 
 
@@ -50,7 +47,7 @@ class FillScale(Rule):
         return bool(s.ctl.free.any())
 
     def start(self, s):
-        s.grow_outside = grow_outside(s.p.margin, s.ctl.unit_group, s.ctl.count, self.settings)
+        s.grow_outside = grow_outside(s.ctl.margin, self.settings)
 
     def __call__(self, s):
         c, ctl = self.settings, s.ctl

@@ -17,8 +17,10 @@ class Scales:
         self.log = np.log(np.asarray(start, dtype=float))
         self.free = np.asarray([p.free_scale] if p.group_free is None else p.group_free, bool)
         self.unit_group = self.group[p.layer]
+        #: (G,) the median margin of each group's units (0 for a group without units)
+        self.margin = group_median(p.margin, self.unit_group, self.count)
         #: (G,) groups whose units' median margin is 0: the overlap the loss reads is their ink's
-        self.bare = group_median(p.margin, self.unit_group, self.count) == 0.0
+        self.bare = self.margin == 0.0
 
     def unit_scale(self) -> np.ndarray:
         """``(N,)`` each unit's current scale."""
