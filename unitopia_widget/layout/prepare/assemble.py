@@ -21,6 +21,7 @@ from ..step.raster import SPRITE_SIDE, RasterGrid, is_thin, snap_rho, sprite_pyr
 from ..step.strata import Radial, sweep_of
 from . import arrange, fit, positions
 from .fields import region_fields
+from .hub import with_hub
 from .kept import kept
 from .lattice import start_rho
 from .order import start_order
@@ -223,6 +224,8 @@ def _pyramid(mark, device: str) -> list:
     # wide as its finest, as lines do: a contact a fraction of a raster pixel deep, little of
     # a solid mark's area, is much of a ring's ink, and the wider levels keep it in the gap
     hollow = float(alpha.sum()) > float(ink.sum())
+    if mark.solid:   # a silhouette keeps others out of its hub too
+        alpha = with_hub(alpha)
     return sprite_pyramid(alpha, device, keep_thin=is_thin(ink) or hollow)
 
 
