@@ -161,3 +161,25 @@ def test_marks_tied_to_a_curve_too_short_for_them_are_named_with_the_curve(mode)
             f"(mode={mode!r}), 200 px long" in out[0] and "Use CurveEmitter(mode='free')" in out[0]
     out = said(lambda: warn_curve_held(units, closed.layers, closed.canvas, np.full(60, 40.0)))
     assert out == []                      # a full container: nothing to say
+
+
+def strata_chart(blocks: bool):
+    """Two layers of discs pulled down into an open box, the second blocking on the first."""
+    df = pd.DataFrame({"v": np.ones(40), "k": np.repeat([0, 1], 20)})
+    c = uw.Chart(df, mark="circle", size="v", by="k", color="k", fill=0.6,
+                 container=uw.Container.rect(50, 50, 300, 200), boundary="open",
+                 forces=[uw.DirectionalForce(90)], canvas=(400, 300))
+    if blocks:
+        c.layer("1").set(blocks=["0"])
+    return c
+
+
+@pytest.mark.parametrize("blocks", [True, False])
+def test_an_open_fill_short_in_strata_names_the_layers_that_rest_on_others(blocks):
+    c = strata_chart(blocks)
+    units = bind(c.df, c.layers)
+    asked = np.sqrt(0.6 * 300 * 200 / units.area.sum())
+    out = said(lambda: warn_unreached_fill(units, c.layers, c.canvas,
+                                           np.full(len(units.rows), 0.7 * asked)))
+    assert len(out) == 1, out
+    assert ("layer '1' rests on the layers it blocks on, in strata" in out[0]) == blocks, out[0]

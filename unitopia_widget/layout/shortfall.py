@@ -18,6 +18,7 @@ from .prepare.pack import thin
 from .prepare.scale import DEFAULT_OPEN_FILL, MAX_COVER, widest_disc, scale_cap
 from .prepare.start import footprint_radius
 from .step.distance import edt
+from .step.strata import sweep_of
 
 SHORT = 0.85      # an open fill whose marks' ink covers under this share of the ask is warned
 #                   (the issue's bound is 0.8; ink that pokes out or overlaps costs a little more)
@@ -63,8 +64,8 @@ def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
     """Warn for each open container whose marks, at their final scales ``unit_scale (N,)``,
     cover under ``SHORT`` of the fill asked of it (its first layer's ``fill=``, else the
     default): the fill it was laid out at, why (the container's widest part against the
-    largest mark, the footprints' and margins' share of it, the shrink that cleared the
-    overlaps) and what would help."""
+    largest mark, the footprints' and margins' share of it, a curve that holds the marks,
+    layers resting in strata, the shrink that cleared the overlaps) and what would help."""
     for members in by_container(layers, lambda layer: layer.boundary == "open"):
         asked = next((layers[i].fill for i in members if layers[i].fill is not None),
                      DEFAULT_OPEN_FILL)
@@ -91,6 +92,14 @@ def warn_unreached_fill(units, layers, canvas, unit_scale: np.ndarray) -> None:
         held = held_by_curve(units, layers, members, at_ask)
         if held:
             why.append(held)
+        resting = [layers[i].name for i in members if layers[i].blocks
+                   and sweep_of(layers[i].forces) is not None]
+        if resting:
+            rest = (("layers", "rest", "they block") if len(resting) > 1
+                    else ("layer", "rests", "it blocks"))
+            why.append(f"{rest[0]} {', '.join(map(repr, resting))} {rest[1]} on the layers "
+                       f"{rest[2]} on, in strata: a stratum's marks do not sift into the "
+                       "gaps of the one below, so strata pack looser than one layer")
         size = math.sqrt(covered / asked)
         drawn = f"the marks were drawn at {size:.0%} of the size that fill asks, where they " \
             f"neither overlap nor poke out"
