@@ -168,3 +168,10 @@ def test_the_board_counts_the_layouts_that_spent_their_whole_budget():
 
 def test_the_quick_slice_is_fifteen_designs_of_the_corpus():
     assert len(SLICE) == len(scoreboard.QUICK) == 15
+
+
+def test_a_design_with_png_assets_builds_into_a_folder_not_made_yet(tmp_path):
+    spec = next(s for s in generate.corpus(0, 120) if dict(s.axes).get("mark") == "png")
+    built = generate.build(spec, str(tmp_path / "assets"), 0)
+    assert any(p.suffix == ".png" for p in (tmp_path / "assets").iterdir())
+    assert len(built.chart.df) > 0

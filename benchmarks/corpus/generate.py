@@ -10,6 +10,7 @@ laid out), each layer's container, and the design's tags.
 from __future__ import annotations
 
 import dataclasses
+import os
 
 import numpy as np
 import pandas as pd
@@ -69,6 +70,9 @@ def corpus(seed: int = 0, n: int = 120) -> list[Spec]:
 
 
 def build(spec: Spec, folder: str, layout_seed: int = 0) -> Built:
+    """The chart of ``spec``; its PNG and mask assets are written into ``folder`` (made if
+    missing)."""
+    os.makedirs(folder, exist_ok=True)
     rng = np.random.default_rng([spec.seed, spec.index])
     if spec.kind != "mixed":
         return ISSUE_KINDS[spec.kind](rng, folder, layout_seed)
