@@ -14,7 +14,7 @@ from unitopia_widget.layout.prepare.assemble import _pyramid
 from unitopia_widget.layout.prepare.hub import HUB, with_hub
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "benchmarks"))
-from corpus import generate, run  # noqa: E402
+from corpus import generate  # noqa: E402
 from designs import flake  # noqa: E402
 
 
